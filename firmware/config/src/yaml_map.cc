@@ -1,0 +1,262 @@
+#include "hubrt/config/yaml_map.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace hubrt::config {
+namespace {
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return fmt::format("'{}'", node.Scalar());
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Null: return "nothing";
+    case YAML::NodeType::Undefined: break;
+  }
+  return "nothing";
+}
+
+std::string join_choices(std::initializer_list<std::string_view> choices) {
+  return fmt::format("{}", fmt::join(choices, ", "));
+}
+
+}  // namespace
+
+YamlMap::YamlMap(std::shared_ptr<const std::string> file, YAML::Node node, std::string path)
+    : file_(std::move(file)), node_(std::move(node)), path_(std::move(path)) {}
+
+Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::string& name) {
+  auto file = std::make_shared<const std::string>(name);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1,
+                                  e.mark.column + 1, e.msg));
+  }
+  if (!root.IsMap()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: expected a mapping at the top level, got {}", name, describe(root)));
+  }
+  return YamlMap(file, root, "");
+}
+
+Expected<YamlMap> YamlMap::load_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    const int err = errno;
+    return make_error(err == ENOENT ? ErrorCode::kNotFound : ErrorCode::kIo,
+                      fmt::format("{}: cannot open: {}", path, std::strerror(err)));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_string(text.str(), path);
+}
+
+bool YamlMap::has(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  return value.IsDefined() && !value.IsNull();
+}
+
+std::vector<std::string> YamlMap::keys() const {
+  std::vector<std::string> out;
+  for (const auto& item : node_) out.push_back(item.first.as<std::string>());
+  return out;
+}
+
+std::string YamlMap::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
+}
+
+Error YamlMap::located(const YAML::Mark& mark, std::string_view what, std::string_view message) const {
+  const std::string where = mark.is_null() ? *file_ : fmt::format("{}:{}:{}", *file_, mark.line + 1, mark.column + 1);
+  if (what.empty()) return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {}", where, message));
+  return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {}: {}", where, what, message));
+}
+
+Error YamlMap::error(std::string_view message) const { return located(node_.Mark(), path_, message); }
+
+Error YamlMap::error_at(std::string_view key, std::string_view message) const {
+  const YAML::Node value = node_[std::string(key)];
+  const YAML::Mark mark = value.IsDefined() ? value.Mark() : node_.Mark();
+  return located(mark, key_path(key), message);
+}
+
+Expected<void> YamlMap::only_keys(std::initializer_list<std::string_view> allowed) const {
+  for (const auto& item : node_) {
+    const auto key = item.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      return located(item.first.Mark(), key_path(key),
+                     fmt::format("unknown key (expected one of: {})", join_choices(allowed)));
+    }
+  }
+  return {};
+}
+
+Expected<YAML::Node> YamlMap::scalar(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  if (!value.IsDefined() || value.IsNull()) return error(fmt::format("missing required key '{}'", key));
+  if (!value.IsScalar()) return error_at(key, fmt::format("expected a single value, got {}", describe(value)));
+  return value;
+}
+
+Expected<std::string> YamlMap::string(std::string_view key) const {
+  auto value = scalar(key);
+  if (!value) return std::move(value).error();
+  if (value->Scalar().empty()) return error_at(key, "must not be empty");
+  return value->Scalar();
+}
+
+Expected<std::string> YamlMap::string_or(std::string_view key, std::string fallback) const {
+  return has(key) ? string(key) : Expected<std::string>(std::move(fallback));
+}
+
+Expected<std::int64_t> YamlMap::integer(std::string_view key, std::int64_t min, std::int64_t max) const {
+  auto value = scalar(key);
+  if (!value) return std::move(value).error();
+  const std::string& text = value->Scalar();
+  std::int64_t parsed = 0;
+  std::size_t used = 0;
+  bool ok = !text.empty();
+  if (ok) {
+    try {
+      parsed = std::stoll(text, &used, 0);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || used != text.size()) {
+    return error_at(key, fmt::format("expected an integer in [{}, {}], got '{}'", min, max, text));
+  }
+  if (parsed < min || parsed > max) {
+    return error_at(key, fmt::format("{} is out of range [{}, {}]", parsed, min, max));
+  }
+  return parsed;
+}
+
+Expected<std::int64_t> YamlMap::integer_or(std::string_view key, std::int64_t fallback, std::int64_t min,
+                                           std::int64_t max) const {
+  return has(key) ? integer(key, min, max) : Expected<std::int64_t>(fallback);
+}
+
+Expected<double> YamlMap::number(std::string_view key, double min, double max) const {
+  auto value = scalar(key);
+  if (!value) return std::move(value).error();
+  const std::string& text = value->Scalar();
+  double parsed = 0;
+  std::size_t used = 0;
+  bool ok = !text.empty();
+  if (ok) {
+    try {
+      parsed = std::stod(text, &used);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || used != text.size() || !std::isfinite(parsed)) {
+    return error_at(key, fmt::format("expected a number in [{}, {}], got '{}'", min, max, text));
+  }
+  if (parsed < min || parsed > max) return error_at(key, fmt::format("{} is out of range [{}, {}]", parsed, min, max));
+  return parsed;
+}
+
+Expected<double> YamlMap::number_or(std::string_view key, double fallback, double min, double max) const {
+  return has(key) ? number(key, min, max) : Expected<double>(fallback);
+}
+
+Expected<bool> YamlMap::boolean(std::string_view key) const {
+  auto value = scalar(key);
+  if (!value) return std::move(value).error();
+  bool parsed = false;
+  if (!YAML::convert<bool>::decode(*value, parsed)) {
+    return error_at(key, fmt::format("expected true or false, got '{}'", value->Scalar()));
+  }
+  return parsed;
+}
+
+Expected<bool> YamlMap::boolean_or(std::string_view key, bool fallback) const {
+  return has(key) ? boolean(key) : Expected<bool>(fallback);
+}
+
+Expected<std::string> YamlMap::choice(std::string_view key, std::initializer_list<std::string_view> choices) const {
+  auto value = string(key);
+  if (!value) return value;
+  if (std::find(choices.begin(), choices.end(), *value) == choices.end()) {
+    return error_at(key, fmt::format("'{}' is not one of: {}", *value, join_choices(choices)));
+  }
+  return value;
+}
+
+Expected<std::string> YamlMap::choice_or(std::string_view key, std::string fallback,
+                                         std::initializer_list<std::string_view> choices) const {
+  return has(key) ? choice(key, choices) : Expected<std::string>(std::move(fallback));
+}
+
+Expected<YamlMap> YamlMap::map(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  if (!value.IsDefined() || value.IsNull()) return error(fmt::format("missing required key '{}'", key));
+  if (!value.IsMap()) return error_at(key, fmt::format("expected a mapping, got {}", describe(value)));
+  return YamlMap(file_, value, key_path(key));
+}
+
+Expected<std::vector<std::pair<std::string, YamlMap>>> YamlMap::named_maps(std::string_view key) const {
+  auto parent = map(key);
+  if (!parent) return std::move(parent).error();
+  std::vector<std::pair<std::string, YamlMap>> out;
+  for (const auto& item : parent->node_) {
+    const auto name = item.first.as<std::string>();
+    const std::string path = parent->key_path(name);
+    if (!item.second.IsMap()) {
+      return located(item.second.Mark(), path, fmt::format("expected a mapping, got {}", describe(item.second)));
+    }
+    out.emplace_back(name, YamlMap(file_, item.second, path));
+  }
+  return out;
+}
+
+Expected<std::vector<YamlMap>> YamlMap::list_of_maps(std::string_view key, bool optional) const {
+  const YAML::Node value = node_[std::string(key)];
+  std::vector<YamlMap> out;
+  if (!value.IsDefined() || value.IsNull()) {
+    if (optional) return out;
+    return error(fmt::format("missing required key '{}'", key));
+  }
+  if (!value.IsSequence()) return error_at(key, fmt::format("expected a list, got {}", describe(value)));
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const std::string path = fmt::format("{}[{}]", key_path(key), i);
+    if (!value[i].IsMap()) {
+      return located(value[i].Mark(), path, fmt::format("expected a mapping, got {}", describe(value[i])));
+    }
+    out.push_back(YamlMap(file_, value[i], path));
+  }
+  return out;
+}
+
+Expected<std::vector<std::string>> YamlMap::list_of_strings(std::string_view key, bool optional) const {
+  const YAML::Node value = node_[std::string(key)];
+  std::vector<std::string> out;
+  if (!value.IsDefined() || value.IsNull()) {
+    if (optional) return out;
+    return error(fmt::format("missing required key '{}'", key));
+  }
+  if (!value.IsSequence()) return error_at(key, fmt::format("expected a list, got {}", describe(value)));
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    if (!value[i].IsScalar() || value[i].Scalar().empty()) {
+      return located(value[i].Mark(), fmt::format("{}[{}]", key_path(key), i),
+                     fmt::format("expected a non-empty string, got {}", describe(value[i])));
+    }
+    out.push_back(value[i].Scalar());
+  }
+  return out;
+}
+
+}  // namespace hubrt::config

@@ -1,0 +1,33 @@
+// A HAL backend opens devices. The hub never names a backend: hubd picks one (fake or linux) and
+// passes it in, the board file says which chip, line, interface or endpoint each device is.
+#pragma once
+
+#include <memory>
+
+#include "hubrt/base/status.h"
+#include "hubrt/hal/can_bus.h"
+#include "hubrt/hal/digital_io.h"
+#include "hubrt/hal/modbus_client.h"
+
+namespace hubrt::hal {
+
+// Factories fail with an Error whose message names the device (logical name and wiring) and says
+// what went wrong, e.g. "dock.slot.smart_tool: GPIO chip 'gpiochip0' not found (no /dev/gpiochip0)".
+// Thread-safety: open_* may be called from one thread at a time; the returned devices are
+// independent of each other and may outlive nothing but the backend.
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  Backend(const Backend&) = delete;
+  Backend& operator=(const Backend&) = delete;
+
+  virtual Expected<std::unique_ptr<DigitalInput>> open_input(const DigitalInputConfig& config) = 0;
+  virtual Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) = 0;
+  virtual Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) = 0;
+  virtual Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) = 0;
+
+ protected:
+  Backend() = default;
+};
+
+}  // namespace hubrt::hal

@@ -1,0 +1,67 @@
+# Helpers every folder uses, so that warnings, sanitizers and test registration stay uniform.
+
+set(HUBRT_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
+    -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
+set(HUBRT_C_WARNINGS -Wall -Wextra)
+
+if(HUBRT_SANITIZE)
+  string(REPLACE "," ";" _hubrt_sanitizers "${HUBRT_SANITIZE}")
+  set(_hubrt_san_flags -fsanitize=${HUBRT_SANITIZE} -fno-omit-frame-pointer)
+  if("undefined" IN_LIST _hubrt_sanitizers)
+    list(APPEND _hubrt_san_flags -fno-sanitize-recover=undefined)
+  endif()
+  add_compile_options(${_hubrt_san_flags})
+  add_link_options(${_hubrt_san_flags})
+endif()
+
+# hubrt_target_defaults(<target>): warnings (errors when HUBRT_WERROR) for our own code only.
+function(hubrt_target_defaults target)
+  get_target_property(_type ${target} TYPE)
+  if(_type STREQUAL "INTERFACE_LIBRARY")
+    return()
+  endif()
+  target_compile_options(${target} PRIVATE
+    $<$<COMPILE_LANGUAGE:CXX>:${HUBRT_WARNINGS}>
+    $<$<COMPILE_LANGUAGE:C>:${HUBRT_C_WARNINGS}>
+    $<$<BOOL:${HUBRT_WERROR}>:-Werror>)
+endfunction()
+
+# hubrt_add_library(<name> [STATIC|INTERFACE] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Headers live in <folder>/include.
+function(hubrt_add_library name)
+  cmake_parse_arguments(A "INTERFACE" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  if(A_INTERFACE)
+    add_library(${name} INTERFACE)
+    target_include_directories(${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    target_link_libraries(${name} INTERFACE ${A_PUBLIC_DEPS})
+    return()
+  endif()
+  add_library(${name} STATIC ${A_SOURCES})
+  target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(${name} PUBLIC ${A_PUBLIC_DEPS} PRIVATE ${A_PRIVATE_DEPS})
+  hubrt_target_defaults(${name})
+endfunction()
+
+# hubrt_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [TIMEOUT s])
+# One gtest binary; each TEST() becomes its own CTest entry (listed at test time, so that
+# cross builds list them through the emulator only when tests run). LABELS: unit (default),
+# integration, conformance, threaded (also run under TSan), slow (not in the default suite).
+function(hubrt_add_test name)
+  if(NOT HUBRT_BUILD_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(A "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  if(NOT A_LABELS)
+    set(A_LABELS unit)
+  endif()
+  if(NOT A_TIMEOUT)
+    set(A_TIMEOUT 120)
+  endif()
+  add_executable(${name} ${A_SOURCES})
+  target_link_libraries(${name} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
+  hubrt_target_defaults(${name})
+  gtest_discover_tests(${name}
+    DISCOVERY_MODE PRE_TEST
+    DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${A_LABELS}" TIMEOUT ${A_TIMEOUT})
+endfunction()
