@@ -60,8 +60,21 @@ function(hubrt_add_test name)
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
   hubrt_target_defaults(${name})
+  # Labels and timeout are applied by a small script included after the discovered tests:
+  # gtest_discover_tests' PROPERTIES loses the separators of a list value in PRE_TEST mode.
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
-    PROPERTIES LABELS "${A_LABELS}" TIMEOUT ${A_TIMEOUT})
+    TEST_LIST ${name}_TESTS)
+  set(_cross_env "")
+  if(CMAKE_CROSSCOMPILING_EMULATOR)
+    # Under qemu-user (no binfmt_misc) a test cannot exec a target program directly: tests that
+    # start programs put this space-separated command in front of them.
+    list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
+    set(_cross_env "  set_property(TEST \"\${_t}\" APPEND PROPERTY ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\")\n")
+  endif()
+  set(_props ${CMAKE_CURRENT_BINARY_DIR}/${name}_properties.cmake)
+  file(GENERATE OUTPUT ${_props} CONTENT
+    "foreach(_t IN LISTS ${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${A_LABELS}\" TIMEOUT ${A_TIMEOUT})\n${_cross_env}endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_props})
 endfunction()

@@ -15,11 +15,16 @@ namespace {
 
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return fmt::format("'{}'", node.Scalar());
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a mapping";
-    case YAML::NodeType::Null: return "nothing";
-    case YAML::NodeType::Undefined: break;
+    case YAML::NodeType::Scalar:
+      return fmt::format("'{}'", node.Scalar());
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    case YAML::NodeType::Null:
+      return "nothing";
+    case YAML::NodeType::Undefined:
+      break;
   }
   return "nothing";
 }
@@ -39,9 +44,8 @@ Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::strin
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    return make_error(ErrorCode::kInvalidArgument,
-                      fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1,
-                                  e.mark.column + 1, e.msg));
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}:{}:{}: YAML syntax error: {}", name,
+                                                               e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   if (!root.IsMap()) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -78,12 +82,15 @@ std::string YamlMap::key_path(std::string_view key) const {
 }
 
 Error YamlMap::located(const YAML::Mark& mark, std::string_view what, std::string_view message) const {
-  const std::string where = mark.is_null() ? *file_ : fmt::format("{}:{}:{}", *file_, mark.line + 1, mark.column + 1);
+  const std::string where =
+      mark.is_null() ? *file_ : fmt::format("{}:{}:{}", *file_, mark.line + 1, mark.column + 1);
   if (what.empty()) return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {}", where, message));
   return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {}: {}", where, what, message));
 }
 
-Error YamlMap::error(std::string_view message) const { return located(node_.Mark(), path_, message); }
+Error YamlMap::error(std::string_view message) const {
+  return located(node_.Mark(), path_, message);
+}
 
 Error YamlMap::error_at(std::string_view key, std::string_view message) const {
   const YAML::Node value = node_[std::string(key)];
@@ -105,7 +112,8 @@ Expected<void> YamlMap::only_keys(std::initializer_list<std::string_view> allowe
 Expected<YAML::Node> YamlMap::scalar(std::string_view key) const {
   const YAML::Node value = node_[std::string(key)];
   if (!value.IsDefined() || value.IsNull()) return error(fmt::format("missing required key '{}'", key));
-  if (!value.IsScalar()) return error_at(key, fmt::format("expected a single value, got {}", describe(value)));
+  if (!value.IsScalar())
+    return error_at(key, fmt::format("expected a single value, got {}", describe(value)));
   return value;
 }
 
@@ -165,7 +173,8 @@ Expected<double> YamlMap::number(std::string_view key, double min, double max) c
   if (!ok || used != text.size() || !std::isfinite(parsed)) {
     return error_at(key, fmt::format("expected a number in [{}, {}], got '{}'", min, max, text));
   }
-  if (parsed < min || parsed > max) return error_at(key, fmt::format("{} is out of range [{}, {}]", parsed, min, max));
+  if (parsed < min || parsed > max)
+    return error_at(key, fmt::format("{} is out of range [{}, {}]", parsed, min, max));
   return parsed;
 }
 
@@ -187,7 +196,8 @@ Expected<bool> YamlMap::boolean_or(std::string_view key, bool fallback) const {
   return has(key) ? boolean(key) : Expected<bool>(fallback);
 }
 
-Expected<std::string> YamlMap::choice(std::string_view key, std::initializer_list<std::string_view> choices) const {
+Expected<std::string> YamlMap::choice(std::string_view key,
+                                      std::initializer_list<std::string_view> choices) const {
   auto value = string(key);
   if (!value) return value;
   if (std::find(choices.begin(), choices.end(), *value) == choices.end()) {
@@ -216,7 +226,8 @@ Expected<std::vector<std::pair<std::string, YamlMap>>> YamlMap::named_maps(std::
     const auto name = item.first.as<std::string>();
     const std::string path = parent->key_path(name);
     if (!item.second.IsMap()) {
-      return located(item.second.Mark(), path, fmt::format("expected a mapping, got {}", describe(item.second)));
+      return located(item.second.Mark(), path,
+                     fmt::format("expected a mapping, got {}", describe(item.second)));
     }
     out.emplace_back(name, YamlMap(file_, item.second, path));
   }

@@ -15,17 +15,17 @@ namespace hubrt {
 
 enum class ErrorCode : std::uint8_t {
   kOk = 0,
-  kInvalidArgument,   // the caller passed something malformed or out of range
-  kNotFound,          // a device, file, chip, line or interface does not exist
-  kPermissionDenied,  // it exists but we may not use it
-  kBusy,              // held by someone else
-  kTimeout,           // no answer within the allotted time
-  kIo,                // the device answered with an error or the transfer failed
-  kUnavailable,       // not (or no longer) reachable: link down, server gone, bus off
-  kProtocol,          // the peer answered something we do not understand
-  kOutOfRange,        // a value outside its allowed range
+  kInvalidArgument,     // the caller passed something malformed or out of range
+  kNotFound,            // a device, file, chip, line or interface does not exist
+  kPermissionDenied,    // it exists but we may not use it
+  kBusy,                // held by someone else
+  kTimeout,             // no answer within the allotted time
+  kIo,                  // the device answered with an error or the transfer failed
+  kUnavailable,         // not (or no longer) reachable: link down, server gone, bus off
+  kProtocol,            // the peer answered something we do not understand
+  kOutOfRange,          // a value outside its allowed range
   kFailedPrecondition,  // refused because of the current state (interlock, not open)
-  kInternal,          // a bug on our side
+  kInternal,            // a bug on our side
 };
 
 // Stable lower-case name of a code, e.g. "timeout".
@@ -54,8 +54,7 @@ template <class T>
 class [[nodiscard]] Result {
  public:
   // NOLINTNEXTLINE(google-explicit-constructor): implicit on purpose, as with std::optional.
-  constexpr Result(T value) noexcept(std::is_nothrow_move_constructible_v<T>)
-      : value_(std::move(value)) {}
+  constexpr Result(T value) noexcept(std::is_nothrow_move_constructible_v<T>) : value_(std::move(value)) {}
   // NOLINTNEXTLINE(google-explicit-constructor)
   constexpr Result(Status status) noexcept : status_(status) { assert(!status.is_ok()); }
 

@@ -1,0 +1,45 @@
+// The node-type layout's ports: a node's commands come from a DDS reader, its State goes to a
+// DDS writer. Both reuse one sample for their whole life, so the cycle allocates nothing here
+// (Cyclone grows a taken sample's strings only when a longer one arrives).
+#pragma once
+
+#include <utility>
+
+#include "hubrt/dds/reader.h"
+#include "hubrt/dds/sample.h"
+#include "hubrt/dds/writer.h"
+#include "hubrt/runtime/ports.h"
+
+namespace hubrt::assembly {
+
+// Thread-safety: next() on the cycle thread only.
+template <dds::TopicType Command>
+class DdsCommandSource final : public runtime::CommandSource<Command> {
+ public:
+  explicit DdsCommandSource(dds::Reader<Command> reader) : reader_(std::move(reader)) {}
+
+  Result<const Command*> next() noexcept override {
+    const Result<bool> taken = reader_.take_next(sample_);
+    if (!taken.is_ok()) return taken.status();
+    return taken.value() ? &sample_.get() : static_cast<const Command*>(nullptr);
+  }
+  [[nodiscard]] const dds::Reader<Command>& reader() const noexcept { return reader_; }
+
+ private:
+  dds::Reader<Command> reader_;
+  dds::Sample<Command> sample_;
+};
+
+// Thread-safety: publish() on the cycle thread only.
+template <dds::TopicType State>
+class DdsStateSink final : public runtime::StateSink<State> {
+ public:
+  explicit DdsStateSink(dds::Writer<State> writer) : writer_(std::move(writer)) {}
+  Status publish(const State& state) noexcept override { return writer_.write(state); }
+  [[nodiscard]] const dds::Writer<State>& writer() const noexcept { return writer_; }
+
+ private:
+  dds::Writer<State> writer_;
+};
+
+}  // namespace hubrt::assembly

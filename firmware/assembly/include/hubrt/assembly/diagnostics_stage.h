@@ -1,0 +1,68 @@
+// Publishes the hub's health on /diagnostics as diagnostic_msgs/DiagnosticArray, the topic ROS
+// users already watch (rqt_runtime_monitor, ros2 topic echo): one status for the cycle and one
+// per node, at a low rate, built in storage sized once.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hubrt/dds/topic.h"
+#include "hubrt/dds/writer.h"
+#include "hubrt/runtime/hub.h"
+#include "hubrt/runtime/text_buffer.h"
+
+#include "diagnostic_msgs.h"
+
+HUBRT_DDS_TOPIC_TYPE(diagnostic_msgs_msg_dds__DiagnosticArray_,
+                     diagnostic_msgs_msg_dds__DiagnosticArray__desc);
+
+namespace hubrt::assembly {
+
+class DiagnosticsStage final : public runtime::CycleStage {
+ public:
+  static constexpr std::size_t kMaxValues = 8;
+
+  // `hub` must already have all its nodes. `interval` between two publications.
+  // Errors: the DDS topic or writer that could not be created.
+  static Expected<std::unique_ptr<DiagnosticsStage>> create(const dds::Participant& participant,
+                                                            const runtime::Hub& hub, std::string hardware_id,
+                                                            Duration interval);
+
+  void before_nodes(const Instant& /*now*/) noexcept override {}
+  void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
+
+  // Builds the array for `now` without publishing (tests read it).
+  const diagnostic_msgs_msg_dds__DiagnosticArray_& build(const Instant& now) noexcept;
+
+ private:
+  struct Status {
+    runtime::TextBuffer<96> name;
+    runtime::TextBuffer<191> message;
+    std::array<runtime::TextBuffer<40>, kMaxValues> values;
+    std::array<diagnostic_msgs_msg_dds__KeyValue_, kMaxValues> pairs{};
+  };
+
+  DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
+                   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer, const runtime::Hub& hub,
+                   std::string hardware_id, Duration interval);
+  void fill_hub_status(const Instant& now) noexcept;
+  void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
+  void set_value(std::size_t status, std::size_t slot, const char* key,
+                 runtime::TextBuffer<40>& value) noexcept;
+
+  dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic_;
+  dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer_;
+  const runtime::Hub& hub_;
+  std::string hardware_id_;
+  Duration interval_;
+  Time next_due_{};
+  bool started_ = false;
+  Time started_at_{};
+  std::vector<Status> statuses_;
+  std::vector<diagnostic_msgs_msg_dds__DiagnosticStatus_> wire_statuses_;
+  diagnostic_msgs_msg_dds__DiagnosticArray_ array_{};
+};
+
+}  // namespace hubrt::assembly

@@ -1,0 +1,56 @@
+// Builds a runnable hub from its two files: the board (wiring) and the hub configuration
+// (what runs on it), on the chosen HAL backend, joined to a DDS domain.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/config/hub_config.h"
+#include "hubrt/dds/domain.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/hal/backend.h"
+#include "hubrt/hal/board/board_config.h"
+#include "hubrt/runtime/cycle_runner.h"
+#include "hubrt/runtime/hub.h"
+
+namespace hubrt::hal::fake {
+class FakeBackend;
+}
+
+namespace hubrt::assembly {
+
+enum class BackendKind : std::uint8_t { kFake, kLinux };
+
+struct AssemblyRequest {
+  std::string board_file;
+  std::string hub_file;
+  BackendKind backend = BackendKind::kFake;
+  dds::DomainConfig domain;
+  std::optional<std::string> name;      // overrides the configured instance name
+  std::optional<double> rate_hz;        // overrides the configured rate
+  std::shared_ptr<spdlog::logger> log;  // defaults to spdlog's default logger
+  runtime::Waker waker;
+};
+
+// Destroyed in reverse order of the members: the hub (nodes, their devices and DDS endpoints)
+// goes before the participant, which goes before the backend.
+struct AssembledHub {
+  hal::BoardConfig board;
+  config::HubConfig config;
+  std::unique_ptr<hal::Backend> backend;
+  hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
+  std::optional<dds::Participant> participant;
+  std::unique_ptr<runtime::Hub> hub;
+};
+
+// Loads and checks both files, checks the board provides what the hub needs, opens the backend,
+// joins the domain and builds the nodes. Errors name the file and line, the device or the topic.
+// `clock` drives the fake backend's simulators and must outlive the result.
+Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock);
+
+}  // namespace hubrt::assembly

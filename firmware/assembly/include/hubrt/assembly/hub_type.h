@@ -1,0 +1,53 @@
+// A hub type (a folder under hubs/) tells the assembly what it needs from a board and how to
+// build its nodes. hubd finds hub types by name in hub_types(); adding a hub type is adding a
+// folder and one line to hubs/CMakeLists.txt, not touching hubd.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/config/hub_config.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/hal/backend.h"
+#include "hubrt/hal/board/board_config.h"
+#include "hubrt/hal/board/board_requirements.h"
+#include "hubrt/runtime/cycle_runner.h"
+#include "hubrt/runtime/hub.h"
+
+namespace hubrt::assembly {
+
+// Everything a hub type may use while building. References outlive the built hub.
+struct HubContext {
+  const config::HubConfig& config;
+  const hal::BoardConfig& board;
+  hal::Backend& backend;
+  const dds::Participant& participant;
+  runtime::Waker waker;  // wakes the cycle when a command arrives
+  std::shared_ptr<spdlog::logger> log;
+  const Clock& clock;  // for opening devices at start; the cycle passes time in afterwards
+};
+
+class HubType {
+ public:
+  virtual ~HubType() = default;
+  [[nodiscard]] virtual std::string_view name() const noexcept = 0;
+  // The signals, buses and devices the configured nodes use. Reads the node settings, so errors
+  // there (file:line, what is wrong) come from here, before anything is opened.
+  [[nodiscard]] virtual Expected<hal::BoardRequirements> requirements(
+      const config::HubConfig& config) const = 0;
+  // Opens the devices and DDS endpoints and adds the nodes to `hub`. Errors name the node and the
+  // device or topic that failed.
+  [[nodiscard]] virtual Expected<void> build(const HubContext& context, runtime::Hub& hub) const = 0;
+};
+
+// Every hub type built into this program (defined by the hubs/ folder).
+std::span<const HubType* const> hub_types() noexcept;
+// The hub type called `name`, or nullptr.
+const HubType* find_hub_type(std::string_view name) noexcept;
+
+}  // namespace hubrt::assembly

@@ -1,0 +1,141 @@
+#include "hubrt/assembly/diagnostics_stage.h"
+
+#include <fmt/format.h>
+
+#include "hubrt/assembly/topic_names.h"
+
+namespace hubrt::assembly {
+namespace {
+
+char* text(const runtime::TextBuffer<96>& b) noexcept {
+  return const_cast<char*>(b.c_str());
+}  // NOLINT
+char* text(const runtime::TextBuffer<191>& b) noexcept {
+  return const_cast<char*>(b.c_str());
+}  // NOLINT
+char* text(const runtime::TextBuffer<40>& b) noexcept {
+  return const_cast<char*>(b.c_str());
+}  // NOLINT
+
+std::uint8_t level_of(runtime::Health health) noexcept {
+  return static_cast<std::uint8_t>(health);
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(const dds::Participant& participant,
+                                                                     const runtime::Hub& hub,
+                                                                     std::string hardware_id,
+                                                                     Duration interval) {
+  auto topic = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, kDiagnosticsTopic);
+  if (!topic) return std::move(topic).error();
+  auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
+  if (!writer) return std::move(writer).error();
+  return std::unique_ptr<DiagnosticsStage>(
+      new DiagnosticsStage(std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval));
+}
+
+DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
+                                   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
+                                   const runtime::Hub& hub, std::string hardware_id, Duration interval)
+    : topic_(std::move(topic)),
+      writer_(std::move(writer)),
+      hub_(hub),
+      hardware_id_(std::move(hardware_id)),
+      interval_(interval),
+      statuses_(hub.nodes().size() + 1),
+      wire_statuses_(hub.nodes().size() + 1) {
+  for (std::size_t i = 0; i < statuses_.size(); ++i) {
+    auto& wire = wire_statuses_[i];
+    wire.name = text(statuses_[i].name);
+    wire.message = text(statuses_[i].message);
+    wire.hardware_id = hardware_id_.data();
+    wire.values._buffer = statuses_[i].pairs.data();
+    wire.values._maximum = kMaxValues;
+    wire.values._release = false;
+  }
+  array_.header.frame_id = const_cast<char*>("");  // NOLINT: wire type wants char*
+  array_.status._buffer = wire_statuses_.data();
+  array_.status._maximum = static_cast<std::uint32_t>(wire_statuses_.size());
+  array_.status._length = static_cast<std::uint32_t>(wire_statuses_.size());
+  array_.status._release = false;
+}
+
+void DiagnosticsStage::set_value(std::size_t status, std::size_t slot, const char* key,
+                                 runtime::TextBuffer<40>& value) noexcept {
+  auto& pair = statuses_[status].pairs[slot];
+  pair.key = const_cast<char*>(key);  // NOLINT: static string, never written through
+  pair.value = text(value);
+}
+
+void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
+  Status& s = statuses_[0];
+  const runtime::CycleStats& stats = hub_.stats();
+  s.name.format("{}: cycle", hub_.options().name);
+  const double period_ms = to_seconds(hub_.options().period) * 1e3;
+  s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
+  std::size_t n = 0;
+  const auto add = [&](const char* key, auto value) {
+    s.values[n].format("{}", value);
+    set_value(0, n, key, s.values[n]);
+    ++n;
+  };
+  add("hub_type", hub_.options().type);
+  add("period_ms", period_ms);
+  add("cycles", stats.cycles);
+  add("command_steps", stats.command_steps);
+  add("overruns", stats.overruns);
+  add("last_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.last_cycle).count());
+  add("max_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.max_cycle).count());
+  add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
+  wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
+  wire_statuses_[0].level =
+      stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);
+}
+
+void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept {
+  Status& s = statuses_[index];
+  s.name.format("{}: {}", hub_.options().name, node.name());
+  const runtime::Health health = node.health();
+  if (!node.first_error().empty()) {
+    s.message.assign(node.first_error());
+  } else {
+    s.message.assign(health == runtime::Health::kOk ? "ok" : "waiting for commands");
+  }
+  std::size_t n = 0;
+  const auto add = [&](const char* key, auto value) {
+    s.values[n].format("{}", value);
+    set_value(index, n, key, s.values[n]);
+    ++n;
+  };
+  add("node_type", node.type());
+  add("states_published", node.published());
+  add("commands_rejected", node.rejected());
+  wire_statuses_[index].values._length = static_cast<std::uint32_t>(n);
+  wire_statuses_[index].level = level_of(health);
+}
+
+const diagnostic_msgs_msg_dds__DiagnosticArray_& DiagnosticsStage::build(const Instant& now) noexcept {
+  if (!started_) {
+    started_ = true;
+    started_at_ = now.mono;
+  }
+  fill_hub_status(now);
+  for (std::size_t i = 0; i < hub_.nodes().size(); ++i) fill_node_status(i + 1, *hub_.nodes()[i]);
+  array_.header.stamp.sec = static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000);
+  array_.header.stamp.nanosec = static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000);
+  return array_;
+}
+
+void DiagnosticsStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
+  if (!publish_all || interval_ <= Duration::zero()) return;
+  if (started_ && now.mono < next_due_) return;
+  const bool first = !started_;
+  build(now);
+  if (first) next_due_ = now.mono;
+  next_due_ += interval_;
+  if (next_due_ <= now.mono) next_due_ = now.mono + interval_;  // behind: skip, never burst
+  writer_.write(array_).ignore();  // diagnostics are best effort; the hub's own State carries errors
+}
+
+}  // namespace hubrt::assembly

@@ -1,0 +1,108 @@
+#include "hubrt/assembly/hub_assembly.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include "hubrt/assembly/diagnostics_stage.h"
+#include "hubrt/assembly/hub_type.h"
+#include "hubrt/hal/board/board_loader.h"
+#include "hubrt/hal/board/board_requirements.h"
+#include "hubrt/hal/fake/fake_backend.h"
+#include "hubrt/hal/linux/backend.h"
+
+namespace hubrt::assembly {
+namespace {
+
+std::string known_hub_types() {
+  std::vector<std::string_view> names;
+  for (const HubType* type : hub_types()) names.push_back(type->name());
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+Expected<void> apply_overrides(const AssemblyRequest& request, config::HubConfig& config) {
+  if (request.name) {
+    if (!config::is_ros_name_token(*request.name)) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("hub name '{}' cannot be used in a topic name: use letters, digits and "
+                                    "underscores, starting with a letter",
+                                    *request.name));
+    }
+    config.name = *request.name;
+  }
+  if (request.rate_hz) {
+    const double rate = *request.rate_hz;
+    if (!(rate > 0.0 && rate <= 1000.0)) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("rate {} Hz is out of range (0, 1000]", rate));
+    }
+    config.rate_hz = rate;
+    config.period = std::chrono::nanoseconds(static_cast<std::int64_t>(std::llround(1e9 / rate)));
+    if (config.command_timeout < 2 * config.period) config.command_timeout = 2 * config.period;
+  }
+  return {};
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock) {
+  auto log = request.log ? request.log : spdlog::default_logger();
+  auto out = std::make_unique<AssembledHub>();
+
+  auto board = hal::load_board(request.board_file);
+  if (!board) return std::move(board).error();
+  out->board = std::move(*board);
+  auto config = config::load_hub_config(request.hub_file);
+  if (!config) return std::move(config).error();
+  out->config = std::move(*config);
+  if (auto ok = apply_overrides(request, out->config); !ok) return std::move(ok).error();
+
+  const HubType* type = find_hub_type(out->config.type);
+  if (type == nullptr) {
+    return make_error(ErrorCode::kNotFound,
+                      fmt::format("{}: unknown hub type '{}' (this hubd knows: {})", out->config.file,
+                                  out->config.type, known_hub_types()));
+  }
+  auto required = type->requirements(out->config);
+  if (!required) return std::move(required).error();
+  if (auto ok = hal::check_requirements(out->board, *required); !ok) return std::move(ok).error();
+
+  if (request.backend == BackendKind::kFake) {
+    auto fake = hal::fake::FakeBackend::create(out->board, clock);
+    if (!fake) {
+      return make_error(fake.error().code,
+                        fmt::format("fake backend for {}: {}", out->board.file, fake.error().message));
+    }
+    out->fake = fake->get();
+    out->backend = std::move(*fake);
+  } else {
+    out->backend = std::make_unique<hal::LinuxBackend>();
+  }
+
+  auto participant = dds::Participant::create(request.domain, out->config.name);
+  if (!participant) return std::move(participant).error();
+  out->participant.emplace(std::move(*participant));
+
+  runtime::HubOptions options;
+  options.type = out->config.type;
+  options.name = out->config.name;
+  options.period = out->config.period;
+  options.log = log;
+  out->hub = std::make_unique<runtime::Hub>(std::move(options));
+  const HubContext context{out->config,   out->board, *out->backend, *out->participant,
+                           request.waker, log,        clock};
+  if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();
+
+  if (out->config.diagnostics_hz > 0) {
+    const auto interval =
+        std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / out->config.diagnostics_hz));
+    auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval);
+    if (!diagnostics) return std::move(diagnostics).error();
+    out->hub->add_stage(std::move(*diagnostics));
+  }
+  return out;
+}
+
+}  // namespace hubrt::assembly

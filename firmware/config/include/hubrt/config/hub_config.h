@@ -1,0 +1,58 @@
+// A hub's configuration file (hubs/<type>/<type>.yaml): what the hub is called on the network,
+// how fast it runs, how its topics are laid out and which nodes it has. Node-specific settings
+// stay as located YAML for the hub type to read, so its errors name file and line too.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/config/yaml_map.h"
+
+namespace hubrt::config {
+
+enum class Layout : std::uint8_t {
+  kNodeType,  // one command topic per node type, addressed by name; one State topic per node
+  kHub,       // one command/State topic pair per hub; a distributor and a collector
+};
+
+struct NodeConfig {
+  std::string name;  // unique within the hub; the node's State topic and target_name
+  std::string type;  // node type, e.g. "dock"
+  YamlMap settings;  // the node's mapping, for the hub type to read its own keys
+};
+
+// Another hub's State topic that this hub consumes as an input (e.g. the Tool ECU watching
+// whether the RSP ECU holds the smart tool).
+struct Subscription {
+  std::string name;    // how the hub's logic refers to it
+  std::string topic;   // ROS topic name, e.g. "/rsp_ecu/rsp/state"
+  std::string type;    // ROS type name, e.g. "hub_msgs/msg/RspState"
+  Duration timeout{};  // older than this counts as lost
+};
+
+struct HubConfig {
+  std::string file;
+  std::string type;
+  std::string name;
+  double rate_hz = 10.0;
+  Duration period{};
+  Duration command_timeout{};
+  Layout layout = Layout::kNodeType;
+  std::string ros_namespace;  // "" or "/station1": prefix of every topic
+  double diagnostics_hz = 1.0;
+  std::vector<NodeConfig> nodes;
+  std::vector<Subscription> subscriptions;
+};
+
+// Loads and validates a hub configuration. Errors name file:line:col, the key and the problem.
+// Checks: known keys, rate in (0, 1000] Hz, timeout at least two periods, names usable in ROS
+// topic names, node names unique, layout known. Node settings are checked by the hub type.
+Expected<HubConfig> load_hub_config(const std::string& path);
+Expected<HubConfig> parse_hub_config(const YamlMap& root);
+
+// True when `name` can be one ROS name token: [A-Za-z][A-Za-z0-9_]*.
+bool is_ros_name_token(std::string_view name) noexcept;
+
+}  // namespace hubrt::config

@@ -1,0 +1,148 @@
+#include "hubrt/config/hub_config.h"
+
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace hubrt::config {
+namespace {
+
+constexpr double kMaxRateHz = 1000.0;
+
+Expected<std::string> ros_name(const YamlMap& map, std::string_view key) {
+  auto value = map.string(key);
+  if (!value) return value;
+  if (!is_ros_name_token(*value)) {
+    return map.error_at(key, fmt::format("'{}' cannot be used in a topic name: use letters, digits and "
+                                         "underscores, starting with a letter",
+                                         *value));
+  }
+  return value;
+}
+
+Expected<std::string> ros_namespace(const YamlMap& map) {
+  auto value = map.string_or("namespace", "");
+  if (!value || value->empty() || *value == "/") return value ? Expected<std::string>(std::string()) : value;
+  std::string_view rest = *value;
+  if (rest.front() != '/') return map.error_at("namespace", "must start with '/', e.g. /station1");
+  rest.remove_prefix(1);
+  if (!rest.empty() && rest.back() == '/') rest.remove_suffix(1);
+  while (!rest.empty()) {
+    const auto slash = rest.find('/');
+    if (!is_ros_name_token(rest.substr(0, slash))) {
+      return map.error_at("namespace", fmt::format("'{}' is not a valid ROS namespace", *value));
+    }
+    rest = slash == std::string_view::npos ? std::string_view() : rest.substr(slash + 1);
+  }
+  std::string normalized = *value;
+  if (normalized.back() == '/') normalized.pop_back();
+  return normalized;
+}
+
+Expected<std::vector<Subscription>> subscriptions(const YamlMap& root) {
+  std::vector<Subscription> out;
+  if (!root.has("subscriptions")) return out;
+  auto entries = root.named_maps("subscriptions");
+  if (!entries) return std::move(entries).error();
+  for (auto& [name, map] : *entries) {
+    if (auto ok = map.only_keys({"topic", "type", "timeout_ms"}); !ok) return std::move(ok).error();
+    auto topic = map.string("topic");
+    if (!topic) return std::move(topic).error();
+    if (topic->front() != '/')
+      return map.error_at("topic", "must be an absolute ROS topic name, e.g. /rsp_ecu/rsp/state");
+    auto type = map.string("type");
+    if (!type) return std::move(type).error();
+    auto timeout = map.integer_or("timeout_ms", 1000, 1, 600'000);
+    if (!timeout) return std::move(timeout).error();
+    out.push_back(Subscription{name, *topic, *type, std::chrono::milliseconds(*timeout)});
+  }
+  return out;
+}
+
+}  // namespace
+
+bool is_ros_name_token(std::string_view name) noexcept {
+  if (name.empty()) return false;
+  const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  if (!alpha(name.front())) return false;
+  for (const char c : name) {
+    if (!alpha(c) && !(c >= '0' && c <= '9') && c != '_') return false;
+  }
+  return true;
+}
+
+Expected<HubConfig> parse_hub_config(const YamlMap& root) {
+  if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "layout", "namespace",
+                                "diagnostics_hz", "nodes", "subscriptions"});
+      !ok) {
+    return std::move(ok).error();
+  }
+  HubConfig config;
+  config.file = root.file();
+  auto type = ros_name(root, "hub");
+  if (!type) return std::move(type).error();
+  config.type = *type;
+  auto name = root.has("name") ? ros_name(root, "name") : Expected<std::string>(config.type);
+  if (!name) return std::move(name).error();
+  config.name = *name;
+
+  auto rate = root.number_or("rate_hz", 10.0, 0.01, kMaxRateHz);
+  if (!rate) return std::move(rate).error();
+  config.rate_hz = *rate;
+  config.period = std::chrono::nanoseconds(static_cast<std::int64_t>(std::llround(1e9 / *rate)));
+
+  const auto default_timeout_ms = std::max<std::int64_t>(1000, 3 * config.period.count() / 1'000'000);
+  auto timeout = root.integer_or("command_timeout_ms", default_timeout_ms, 1, 3'600'000);
+  if (!timeout) return std::move(timeout).error();
+  config.command_timeout = std::chrono::milliseconds(*timeout);
+  if (config.command_timeout < 2 * config.period) {
+    return root.error_at("command_timeout_ms",
+                         fmt::format("{} ms is shorter than two cycle periods ({:.1f} ms at {} Hz): every "
+                                     "jitter would trip the watchdog",
+                                     *timeout, 2e3 / *rate, *rate));
+  }
+
+  auto layout = root.choice_or("layout", "node_type", {"node_type", "hub"});
+  if (!layout) return std::move(layout).error();
+  config.layout = *layout == "hub" ? Layout::kHub : Layout::kNodeType;
+
+  auto ns = ros_namespace(root);
+  if (!ns) return std::move(ns).error();
+  config.ros_namespace = *ns;
+
+  auto diagnostics = root.number_or("diagnostics_hz", 1.0, 0.0, 100.0);
+  if (!diagnostics) return std::move(diagnostics).error();
+  config.diagnostics_hz = *diagnostics;
+
+  auto nodes = root.named_maps("nodes");
+  if (!nodes) return std::move(nodes).error();
+  if (nodes->empty()) return root.error_at("nodes", "a hub needs at least one node");
+  std::set<std::string> seen;
+  for (auto& [node_name, map] : *nodes) {
+    if (!is_ros_name_token(node_name)) {
+      return map.error(
+          fmt::format("node name '{}' cannot be used in a topic name: use letters, digits and "
+                      "underscores, starting with a letter",
+                      node_name));
+    }
+    if (!seen.insert(node_name).second)
+      return map.error(fmt::format("node '{}' is defined twice", node_name));
+    auto node_type = ros_name(map, "type");
+    if (!node_type) return std::move(node_type).error();
+    config.nodes.push_back(NodeConfig{node_name, *node_type, map});
+  }
+
+  auto subs = subscriptions(root);
+  if (!subs) return std::move(subs).error();
+  config.subscriptions = std::move(*subs);
+  return config;
+}
+
+Expected<HubConfig> load_hub_config(const std::string& path) {
+  auto root = YamlMap::load_file(path);
+  if (!root) return std::move(root).error();
+  return parse_hub_config(*root);
+}
+
+}  // namespace hubrt::config

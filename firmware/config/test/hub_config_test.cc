@@ -1,0 +1,98 @@
+#include "hubrt/config/hub_config.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+namespace hubrt::config {
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+
+Expected<HubConfig> parse(const std::string& text) {
+  auto root = YamlMap::load_string(text, "hub.yaml");
+  if (!root) return std::move(root).error();
+  return parse_hub_config(*root);
+}
+
+TEST(HubConfig, DefaultsAreSane) {
+  auto config = parse("hub: dock_ecu\nnodes:\n  dock: {type: dock, slots: []}\n");
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->name, "dock_ecu") << "the instance name defaults to the hub type";
+  EXPECT_EQ(config->period, milliseconds(100));
+  EXPECT_EQ(config->command_timeout, milliseconds(1000));
+  EXPECT_EQ(config->layout, Layout::kNodeType);
+  EXPECT_EQ(config->ros_namespace, "");
+  ASSERT_EQ(config->nodes.size(), 1u);
+  EXPECT_EQ(config->nodes[0].name, "dock");
+  EXPECT_EQ(config->nodes[0].type, "dock");
+  EXPECT_TRUE(config->nodes[0].settings.has("slots"));
+}
+
+TEST(HubConfig, ReadsEverything) {
+  auto config = parse(R"(hub: tool_ecu
+name: tool1
+rate_hz: 100
+command_timeout_ms: 250
+layout: hub
+namespace: /station1/
+diagnostics_hz: 2
+nodes:
+  tool: {type: smart_tool}
+  lift: {type: lift}
+subscriptions:
+  rsp: {topic: /rsp_ecu/rsp/state, type: hub_msgs/msg/RspState, timeout_ms: 300}
+)");
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->name, "tool1");
+  EXPECT_EQ(config->period, milliseconds(10));
+  EXPECT_EQ(config->command_timeout, milliseconds(250));
+  EXPECT_EQ(config->layout, Layout::kHub);
+  EXPECT_EQ(config->ros_namespace, "/station1");
+  EXPECT_EQ(config->nodes.size(), 2u);
+  ASSERT_EQ(config->subscriptions.size(), 1u);
+  EXPECT_EQ(config->subscriptions[0].topic, "/rsp_ecu/rsp/state");
+  EXPECT_EQ(config->subscriptions[0].timeout, milliseconds(300));
+}
+
+TEST(HubConfig, LongPeriodsGetALongerDefaultTimeout) {
+  auto config = parse("hub: dock_ecu\nrate_hz: 1\nnodes:\n  dock: {type: dock}\n");
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->command_timeout, milliseconds(3000));
+}
+
+TEST(HubConfig, DuplicateNodeNamesAreRejected) {
+  auto config = parse("hub: dock_ecu\nnodes:\n  dock: {type: dock}\n  dock: {type: dock}\n");
+  ASSERT_FALSE(config);
+  EXPECT_NE(config.error().message.find("node 'dock' is defined twice"), std::string::npos)
+      << config.error().message;
+}
+
+// Every file in broken_hubs/ names its expected error in a first line "# expect: <message>".
+TEST(HubConfig, BrokenFilesGiveTheirExpectedMessages) {
+  const fs::path dir = fs::path(HUBRT_BROKEN_HUBS_DIR);
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::ifstream in(entry.path());
+    std::string first;
+    std::getline(in, first);
+    const std::string marker = "# expect: ";
+    ASSERT_EQ(first.rfind(marker, 0), 0u) << entry.path() << " lacks its '# expect:' line";
+    const std::string expected = first.substr(marker.size());
+    auto config = load_hub_config(entry.path().string());
+    ASSERT_FALSE(config) << entry.path() << " loaded but should not";
+    const std::string& message = config.error().message;
+    // The message starts with the full path; compare from the file name on.
+    const auto at = message.find(entry.path().filename().string());
+    ASSERT_NE(at, std::string::npos) << message;
+    EXPECT_EQ(message.substr(at), expected);
+    ++checked;
+  }
+  EXPECT_GE(checked, 10);
+}
+
+}  // namespace
+}  // namespace hubrt::config

@@ -1,0 +1,14 @@
+// hubctl's commands, each registered on the CLI11 app with its own options.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace hubrt::hubctl {
+
+// Each returns the exit code through `exit_code` when its subcommand ran.
+void add_list_command(CLI::App& app, int& exit_code);
+void add_echo_command(CLI::App& app, int& exit_code);
+void add_send_command(CLI::App& app, int& exit_code);
+void add_hz_command(CLI::App& app, int& exit_code);
+
+}  // namespace hubrt::hubctl

@@ -1,0 +1,62 @@
+#include "render.h"
+
+#include <fmt/format.h>
+
+namespace hubrt::hubctl {
+namespace {
+
+bool is_scalar(const nlohmann::ordered_json& v) {
+  return !v.is_object() && !v.is_array();
+}
+
+std::string scalar(const nlohmann::ordered_json& v) {
+  if (v.is_string()) {
+    const auto& s = v.get_ref<const std::string&>();
+    return s.empty() ? "''" : s;
+  }
+  if (v.is_number_float()) return fmt::format("{:g}", v.get<double>());
+  return v.dump();
+}
+
+void render(const nlohmann::ordered_json& value, int indent, std::string& out) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  if (value.is_object()) {
+    for (const auto& [key, item] : value.items()) {
+      if (is_scalar(item)) {
+        out += fmt::format("{}{}: {}\n", pad, key, scalar(item));
+      } else if (item.empty()) {
+        out += fmt::format("{}{}: {}\n", pad, key, item.is_array() ? "[]" : "{}");
+      } else if (item.is_array() && std::all_of(item.begin(), item.end(), is_scalar)) {
+        std::string joined;
+        for (const auto& element : item) joined += (joined.empty() ? "" : ", ") + scalar(element);
+        out += fmt::format("{}{}: [{}]\n", pad, key, joined);
+      } else {
+        out += fmt::format("{}{}:\n", pad, key);
+        render(item, indent + 2, out);
+      }
+    }
+  } else if (value.is_array()) {
+    for (const auto& item : value) {
+      if (is_scalar(item)) {
+        out += fmt::format("{}- {}\n", pad, scalar(item));
+      } else {
+        std::string inner;
+        render(item, indent + 2, inner);
+        inner.replace(static_cast<std::size_t>(indent), 2, "- ");
+        out += inner;
+      }
+    }
+  } else {
+    out += fmt::format("{}{}\n", pad, scalar(value));
+  }
+}
+
+}  // namespace
+
+std::string render_human(const nlohmann::ordered_json& value) {
+  std::string out;
+  render(value, 0, out);
+  return out;
+}
+
+}  // namespace hubrt::hubctl

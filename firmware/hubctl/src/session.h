@@ -1,0 +1,48 @@
+// What every hubctl command shares: joining the domain, finding a topic's type by discovery, and
+// stopping on Ctrl-C.
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/msgs/type_info.h"
+
+namespace hubrt::hubctl {
+
+struct DomainOptions {
+  std::optional<std::uint32_t> domain;
+  std::string dds_config;
+  bool loopback = false;
+  double timeout_s = 5.0;  // how long to wait for discovery
+};
+void add_domain_options(CLI::App& app, DomainOptions& options);
+
+// Exit codes shared by all commands.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailed = 1;  // the check failed, nothing received, ...
+inline constexpr int kExitUsage = 2;   // bad arguments, unknown topic or type
+
+// Set by SIGINT/SIGTERM; loops check it.
+bool stop_requested() noexcept;
+void install_stop_handler();
+
+Expected<dds::Participant> join_domain(const DomainOptions& options, std::string_view name);
+
+// "/dock/command" for "/dock/command" or "rt/dock/command"; errors for anything else.
+Expected<std::string> ros_topic(std::string_view topic);
+
+// The type of `ros_name` as seen on the domain (any writer or reader of it), waiting up to
+// `timeout`; or `type_hint` (ROS or DDS type name) when given. Errors: kNotFound naming the topic
+// and the topics that do exist with a similar name; kInvalidArgument for an unknown type.
+Expected<const msgs::TypeInfo*> topic_type(const dds::Participant& participant, const std::string& ros_name,
+                                           const std::string& type_hint, Duration timeout);
+
+Duration seconds(double s);
+
+}  // namespace hubrt::hubctl

@@ -1,0 +1,45 @@
+#include "render.h"
+
+#include <gtest/gtest.h>
+
+namespace hubrt::hubctl {
+namespace {
+
+TEST(RenderHuman, NestedStateReadsLikeYaml) {
+  const auto value = nlohmann::ordered_json::parse(R"({
+    "header": {"stamp": {"sec": 5, "nanosec": 10}, "seq": 42},
+    "name": "dock",
+    "echo": {"target_type": "dock", "target_name": "", "action": "monitor"},
+    "fresh_msg": true,
+    "t_plus": 1.5,
+    "error_list": [],
+    "slots": [{"name": "smart_tool", "occupied": false}, {"name": "spare", "occupied": true}]
+  })");
+  EXPECT_EQ(render_human(value),
+            "header:\n"
+            "  stamp:\n"
+            "    sec: 5\n"
+            "    nanosec: 10\n"
+            "  seq: 42\n"
+            "name: dock\n"
+            "echo:\n"
+            "  target_type: dock\n"
+            "  target_name: ''\n"
+            "  action: monitor\n"
+            "fresh_msg: true\n"
+            "t_plus: 1.5\n"
+            "error_list: []\n"
+            "slots:\n"
+            "  - name: smart_tool\n"
+            "    occupied: false\n"
+            "  - name: spare\n"
+            "    occupied: true\n");
+}
+
+TEST(RenderHuman, ScalarListsStayOnOneLine) {
+  const auto value = nlohmann::ordered_json::parse(R"({"error_list": ["a", "b c"]})");
+  EXPECT_EQ(render_human(value), "error_list: [a, b c]\n");
+}
+
+}  // namespace
+}  // namespace hubrt::hubctl

@@ -1,0 +1,63 @@
+// Runs a Hub in real time: periodic cycles on absolute deadlines of CLOCK_MONOTONIC (a timerfd, so
+// lateness never accumulates into drift), command steps as soon as a transport calls wake(), and a
+// clean stop on SIGINT/SIGTERM (read from a signalfd, so no handler runs inside the cycle).
+#pragma once
+
+#include <csignal>
+#include <functional>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/runtime/hub.h"
+
+namespace hubrt::runtime {
+
+// Wakes a CycleRunner from any thread. Async-signal-safe and allocation-free (one write(2)).
+class Waker {
+ public:
+  Waker() = default;
+  explicit Waker(int event_fd) noexcept : fd_(event_fd) {}
+  void wake() const noexcept;
+
+ private:
+  int fd_ = -1;
+};
+
+struct RunHooks {
+  // After each periodic cycle (e.g. systemd watchdog ping, diagnostics). Must not block.
+  std::function<void(const Instant&)> after_cycle;
+};
+
+enum class StopReason : std::uint8_t { kSignal, kRequested };
+
+class CycleRunner {
+ public:
+  // Blocks SIGINT and SIGTERM for the calling thread — call it before starting any other thread
+  // (DDS participants) so that they inherit the mask — and opens the timer, event and signal fds.
+  // Errors: kIo with the failing system call named.
+  static Expected<CycleRunner> create();
+  CycleRunner(CycleRunner&& other) noexcept;
+  CycleRunner& operator=(CycleRunner&&) = delete;
+  CycleRunner(const CycleRunner&) = delete;
+  ~CycleRunner();
+
+  [[nodiscard]] Waker waker() const noexcept { return Waker(event_fd_); }
+  // Asks run() to return after the current step. Thread-safe.
+  void request_stop() const noexcept;
+
+  // Runs cycles every hub.options().period until a signal or request_stop(). The first cycle runs
+  // at once. Each periodic deadline missed while a cycle ran late counts as an overrun in
+  // hub.stats(). Errors: kInvalidArgument for a non-positive period; kIo for a failing system call.
+  Expected<StopReason> run(Hub& hub, const Clock& clock, const RunHooks& hooks = {});
+  [[nodiscard]] int last_signal() const noexcept { return last_signal_; }
+
+ private:
+  CycleRunner(int timer_fd, int event_fd, int signal_fd) noexcept;
+
+  int timer_fd_ = -1;
+  int event_fd_ = -1;
+  int signal_fd_ = -1;
+  int last_signal_ = 0;
+};
+
+}  // namespace hubrt::runtime

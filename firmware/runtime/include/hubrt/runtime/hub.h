@@ -1,0 +1,83 @@
+// A hub: its nodes and the fixed-rate cycle over them. Each cycle: every node takes its
+// commands, reads inputs, runs its logic, writes outputs, rebuilds its State — then every State
+// is published (the heartbeat). A command that arrives between cycles triggers the same step at
+// once and publishes only the States whose command took effect.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/base/time.h"
+#include "hubrt/runtime/node.h"
+
+namespace hubrt::runtime {
+
+// Something a layout adds around the nodes (the hub layout's distributor and collector).
+// Called on the cycle thread, allocation-free.
+class CycleStage {
+ public:
+  virtual ~CycleStage() = default;
+  // Before the nodes step: e.g. split a hub command into node commands.
+  virtual void before_nodes(const Instant& now) noexcept = 0;
+  // After the nodes stepped. `publish_all`: this is a periodic cycle; `took_effect`: some node's
+  // command took effect. E.g. assemble and publish the hub State.
+  virtual void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept = 0;
+};
+
+struct CycleStats {
+  std::uint64_t cycles = 0;         // periodic cycles run
+  std::uint64_t command_steps = 0;  // steps triggered by arriving commands
+  std::uint64_t overruns = 0;       // periods missed because a cycle ran late
+  std::uint64_t publish_errors = 0;
+  Duration last_cycle{0};  // execution time of the last periodic cycle
+  Duration max_cycle{0};
+};
+
+struct HubOptions {
+  std::string type;  // hub type, e.g. "dock_ecu"
+  std::string name;  // instance name, unique on the domain
+  Duration period = std::chrono::milliseconds(100);
+  std::shared_ptr<spdlog::logger> log;
+};
+
+// Thread-safety: everything runs on the cycle thread.
+class Hub {
+ public:
+  explicit Hub(HubOptions options);
+  Hub(const Hub&) = delete;
+  Hub& operator=(const Hub&) = delete;
+
+  // Wiring; before the first cycle only. `owned` keeps alive what nodes reference (ports).
+  void add_node(std::unique_ptr<NodeBase> node);
+  void add_stage(std::unique_ptr<CycleStage> stage);
+  void keep_alive(std::shared_ptr<void> owned);
+
+  // A periodic cycle at `now`; publishes every State.
+  void cycle(const Instant& now) noexcept;
+  // A step between cycles because commands arrived; publishes States whose command took effect.
+  void command_step(const Instant& now) noexcept;
+  // Overruns observed by the timer (periods that passed without a cycle).
+  void count_overruns(std::uint64_t missed) noexcept { stats_.overruns += missed; }
+  // Drives every node's outputs to its safe state (shutdown).
+  void enter_safe_state() noexcept;
+
+  [[nodiscard]] const HubOptions& options() const noexcept { return options_; }
+  [[nodiscard]] const CycleStats& stats() const noexcept { return stats_; }
+  [[nodiscard]] const std::vector<std::unique_ptr<NodeBase>>& nodes() const noexcept { return nodes_; }
+  [[nodiscard]] NodeBase* find_node(std::string_view name) const noexcept;
+
+ private:
+  void step(const Instant& now, bool publish_all) noexcept;
+
+  HubOptions options_;
+  std::vector<std::unique_ptr<NodeBase>> nodes_;
+  std::vector<std::unique_ptr<CycleStage>> stages_;
+  std::vector<std::shared_ptr<void>> owned_;
+  CycleStats stats_;
+};
+
+}  // namespace hubrt::runtime

@@ -1,0 +1,284 @@
+// A node: one piece of equipment with a Command type and a State type (the paper's §5.3). The
+// generic part here does what every node does — command intake and validation, echo, fresh_msg,
+// t_plus, got_reset, error_list, the watchdog, the State header — and calls the node type's
+// Logic for what only it knows.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <concepts>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include "hubrt/base/time.h"
+#include "hubrt/runtime/arena.h"
+#include "hubrt/runtime/command_tracker.h"
+#include "hubrt/runtime/error_list.h"
+#include "hubrt/runtime/message_ops.h"
+#include "hubrt/runtime/ports.h"
+
+namespace hubrt::runtime {
+
+inline constexpr std::string_view kResetAction = "reset";
+// Longest string accepted in any command field, in bytes.
+inline constexpr std::size_t kMaxCommandString = 64;
+
+// What a node type implements. All calls happen on the cycle thread and must not allocate.
+template <class L>
+concept NodeLogic = requires(L& logic, const L& const_logic, const typename L::Command& command,
+                             typename L::State& state, ErrorList& errors, Problem& problem, Time now) {
+  typename L::Command;
+  typename L::State;
+  { L::kType } -> std::convertible_to<std::string_view>;
+  { L::kActions.size() } -> std::convertible_to<std::size_t>;
+  // Checks node-specific fields (ranges, names) of a command whose action is already known to be
+  // one of kActions. Returns false and describes the problem to reject it.
+  { const_logic.validate(command, problem) } -> std::same_as<bool>;
+  // Samples the node's inputs.
+  { logic.read_inputs(now) } -> std::same_as<void>;
+  // Decides and writes the outputs for the command in force; nullptr means none is in force
+  // (never received, or the watchdog tripped): the node's safe state.
+  { logic.update(static_cast<const typename L::Command*>(nullptr), now) } -> std::same_as<void>;
+  // Clears latched faults (a reset command took effect).
+  { logic.reset() } -> std::same_as<void>;
+  // Fills the node-specific State fields and adds what is wrong right now.
+  { logic.report(state, errors, now) } -> std::same_as<void>;
+  // Drives the outputs to the safe state at once (shutdown, fatal fault).
+  { logic.enter_safe_state() } -> std::same_as<void>;
+};
+
+enum class Addressing : std::uint8_t {
+  kIgnoreOthers,  // node-type layout: the topic is shared; commands for other names are not ours
+  kRejectOthers,  // hub layout: the distributor routed it here; another name is an error
+};
+
+struct NodeOptions {
+  std::string name;
+  Duration command_timeout = std::chrono::milliseconds(1000);
+  Addressing addressing = Addressing::kIgnoreOthers;
+  std::shared_ptr<spdlog::logger> log;
+};
+
+enum class Health : std::uint8_t { kOk = 0, kWarn = 1, kError = 2, kStale = 3 };  // = DiagnosticStatus levels
+
+// What the hub's cycle sees of a node.
+class NodeBase {
+ public:
+  virtual ~NodeBase() = default;
+  [[nodiscard]] virtual std::string_view name() const noexcept = 0;
+  [[nodiscard]] virtual std::string_view type() const noexcept = 0;
+  // Takes commands, runs the watchdog and the logic, writes outputs, rebuilds the State.
+  // Returns true when a command took effect, i.e. the State should be published now.
+  virtual bool step(const Instant& now) noexcept = 0;
+  // Stamps and publishes the State built by the last step.
+  virtual Status publish(const Instant& now) noexcept = 0;
+  virtual void enter_safe_state() noexcept = 0;
+  [[nodiscard]] virtual Health health() const noexcept = 0;
+  // First entry of the error list, or empty.
+  [[nodiscard]] virtual std::string_view first_error() const noexcept = 0;
+  [[nodiscard]] virtual std::uint64_t published() const noexcept = 0;
+  [[nodiscard]] virtual std::uint64_t rejected() const noexcept = 0;
+};
+
+template <NodeLogic Logic>
+class Node final : public NodeBase {
+ public:
+  using Command = typename Logic::Command;
+  using State = typename Logic::State;
+
+  static constexpr std::size_t kEchoArenaBytes = 4096;
+
+  // `ops` describes Command; `source` and `sink` must outlive the node.
+  Node(NodeOptions options, Logic logic, CommandSource<Command>& source, StateSink<State>& sink,
+       const MessageOps& ops)
+      : options_(std::move(options)),
+        logic_(std::move(logic)),
+        source_(source),
+        sink_(sink),
+        ops_(ops),
+        tracker_(options_.command_timeout),
+        arenas_{Arena(kEchoArenaBytes), Arena(kEchoArenaBytes)} {
+    static_assert(
+        std::find(Logic::kActions.begin(), Logic::kActions.end(), kResetAction) != Logic::kActions.end(),
+        "every node type accepts the reset action");
+    if (!options_.log) options_.log = spdlog::default_logger();
+    state_.name = const_cast<char*>(options_.name.c_str());  // NOLINT: wire type wants char*
+  }
+  ~Node() override = default;
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  [[nodiscard]] std::string_view name() const noexcept override { return options_.name; }
+  [[nodiscard]] std::string_view type() const noexcept override { return Logic::kType; }
+  [[nodiscard]] Logic& logic() noexcept { return logic_; }
+  [[nodiscard]] const State& state() const noexcept { return state_; }
+  [[nodiscard]] const ErrorList& errors() const noexcept { return errors_; }
+  [[nodiscard]] const CommandTracker& tracker() const noexcept { return tracker_; }
+
+  bool step(const Instant& now) noexcept override {
+    const bool took_effect = take_commands(now.mono);
+    if (tracker_.check(now.mono) == CommandTracker::Watchdog::kTripped) {
+      options_.log->warn("{}: no valid command for more than {:.3f} s: outputs to safe state", options_.name,
+                         to_seconds(options_.command_timeout));
+    }
+    logic_.read_inputs(now.mono);
+    logic_.update(tracker_.in_force() ? &echo() : nullptr, now.mono);
+    rebuild_state(now.mono);
+    return took_effect;
+  }
+
+  Status publish(const Instant& now) noexcept override {
+    state_.header.seq = ++published_;
+    state_.header.stamp.sec = static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000);
+    state_.header.stamp.nanosec = static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000);
+    return sink_.publish(state_);
+  }
+
+  void enter_safe_state() noexcept override { logic_.enter_safe_state(); }
+
+  [[nodiscard]] Health health() const noexcept override {
+    if (!errors_.empty()) return tracker_.has_echo() && !tracker_.fresh() ? Health::kStale : Health::kError;
+    return tracker_.fresh() ? Health::kOk : Health::kWarn;
+  }
+  [[nodiscard]] std::string_view first_error() const noexcept override {
+    return errors_.empty() ? std::string_view() : errors_.at(0);
+  }
+  [[nodiscard]] std::uint64_t published() const noexcept override { return published_; }
+  [[nodiscard]] std::uint64_t rejected() const noexcept override { return rejected_; }
+
+ private:
+  // Drains the source; the last valid command wins. Returns true when one took effect.
+  bool take_commands(Time now) noexcept {
+    bool took_effect = false;
+    for (;;) {
+      const Result<const Command*> next = source_.next();
+      if (!next.is_ok()) {
+        options_.log->error("{}: taking commands failed: {}", options_.name, to_string(next.status().code()));
+        break;
+      }
+      const Command* command = next.value();
+      if (command == nullptr) break;
+      if (!addressed_here(*command)) continue;
+      if (!accept(*command, now)) continue;
+      took_effect |= take(*command, now);
+    }
+    return took_effect;
+  }
+
+  [[nodiscard]] bool addressed_here(const Command& command) const noexcept {
+    return options_.addressing == Addressing::kRejectOthers || view(command.target_name) == options_.name;
+  }
+
+  // Validates a command addressed here; a rejected one is reported and changes nothing else.
+  bool accept(const Command& command, Time now) noexcept {
+    Problem& problem = last_rejection_;
+    bool ok = ops_.check_fields(&command, kMaxCommandString, problem);
+    if (ok && view(command.target_name) != options_.name) {
+      problem.format("wrong target: addressed to '{}', this node is '{}'", view(command.target_name),
+                     options_.name);
+      ok = false;
+    }
+    if (ok && view(command.target_type) != Logic::kType) {
+      problem.format("wrong target type '{}' for node '{}' of type '{}'", view(command.target_type),
+                     options_.name, Logic::kType);
+      ok = false;
+    }
+    if (ok && !known_action(view(command.action))) {
+      problem.format("unknown action '{}' (expected one of: {})", view(command.action),
+                     fmt::join(Logic::kActions, ", "));
+      ok = false;
+    }
+    if (ok && !logic_.validate(command, problem)) ok = false;
+    if (ok) return true;
+    note_rejection(now);
+    return false;
+  }
+
+  // Counts a rejection; logs it when the reason changed or a second has passed, so a planner
+  // repeating a bad command at 100 Hz does not flood the journal.
+  void note_rejection(Time now) noexcept {
+    ++rejected_;
+    rejected_at_ = now;
+    has_rejection_ = true;
+    if (last_rejection_.view() != last_logged_.view() || now - logged_at_ >= std::chrono::seconds(1)) {
+      options_.log->warn("{}: rejected command ({} so far): {}", options_.name, rejected_,
+                         last_rejection_.view());
+      last_logged_.assign(last_rejection_.view());
+      logged_at_ = now;
+    }
+  }
+
+  // Records a valid command; copies it into the echo when its content is new.
+  bool take(const Command& command, Time now) noexcept {
+    const bool differs = !tracker_.has_echo() || !ops_.equal(&command, &echo());
+    // Copy into the spare buffer first, so a command too large to hold leaves the echo intact.
+    if (differs && !ops_.copy_into(&command, &echoes_[1 - current_], arenas_[1 - current_])) {
+      last_rejection_.format("command too large to hold (more than {} bytes of strings and sequences)",
+                             kEchoArenaBytes);
+      note_rejection(now);
+      return false;
+    }
+    if (differs) current_ = 1 - current_;
+    const bool is_reset = view(command.action) == kResetAction;
+    if (tracker_.on_valid_command(now, differs, is_reset) != CommandTracker::Arrival::kTookEffect)
+      return false;
+    has_rejection_ = false;
+    if (is_reset) logic_.reset();
+    options_.log->debug("{}: command took effect: action '{}'", options_.name, view(echo().action));
+    return true;
+  }
+
+  void rebuild_state(Time now) noexcept {
+    errors_.clear();
+    // A rejection stays visible for one command timeout, or until a valid command takes effect.
+    if (has_rejection_ && now - rejected_at_ <= options_.command_timeout) {
+      errors_.add("rejected command: {}", last_rejection_.view());
+    }
+    if (tracker_.has_echo() && !tracker_.fresh()) {
+      errors_.add("command timeout: no valid command for {:.2f} s (limit {:.2f} s); outputs in safe state",
+                  to_seconds(tracker_.since_last_command(now)), to_seconds(options_.command_timeout));
+    }
+    logic_.report(state_, errors_, now);
+    state_.echo = echo();
+    state_.fresh_msg = tracker_.fresh();
+    state_.t_plus = static_cast<float>(tracker_.t_plus(now));
+    state_.got_reset = tracker_.got_reset();
+    errors_.bind(state_.error_list);
+  }
+
+  [[nodiscard]] const Command& echo() const noexcept { return echoes_[current_]; }
+
+  [[nodiscard]] static bool known_action(std::string_view action) noexcept {
+    return std::find(Logic::kActions.begin(), Logic::kActions.end(), action) != Logic::kActions.end();
+  }
+  [[nodiscard]] static std::string_view view(const char* text) noexcept {
+    return text == nullptr ? std::string_view() : std::string_view(text);
+  }
+
+  NodeOptions options_;
+  Logic logic_;
+  CommandSource<Command>& source_;
+  StateSink<State>& sink_;
+  const MessageOps& ops_;
+  CommandTracker tracker_;
+  // Double-buffered deep copies of the echoed command; echoes_[current_] is the echo.
+  std::array<Arena, 2> arenas_;
+  std::array<Command, 2> echoes_{};
+  int current_ = 0;
+  State state_{};
+  ErrorList errors_;
+  Problem last_rejection_;
+  Problem last_logged_;
+  Time rejected_at_{};
+  Time logged_at_{};
+  bool has_rejection_ = false;
+  std::uint64_t published_ = 0;
+  std::uint64_t rejected_ = 0;
+};
+
+}  // namespace hubrt::runtime

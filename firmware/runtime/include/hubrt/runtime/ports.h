@@ -1,0 +1,28 @@
+// Where a node's commands come from and where its State goes. The node-type layout wires these
+// to DDS readers and writers; the hub layout to a distributor and a collector; tests to queues.
+#pragma once
+
+#include "hubrt/base/status.h"
+
+namespace hubrt::runtime {
+
+// Thread-safety: called only from the cycle thread.
+template <class Command>
+class CommandSource {
+ public:
+  virtual ~CommandSource() = default;
+  // The next received command, or nullptr when none is pending. The pointee stays valid until
+  // the next call. Errors: whatever the transport reports (the node logs them and carries on).
+  virtual Result<const Command*> next() noexcept = 0;
+};
+
+// Thread-safety: called only from the cycle thread.
+template <class State>
+class StateSink {
+ public:
+  virtual ~StateSink() = default;
+  // Publishes (or hands on) one State. Must not keep pointers into `state` after returning.
+  virtual Status publish(const State& state) noexcept = 0;
+};
+
+}  // namespace hubrt::runtime

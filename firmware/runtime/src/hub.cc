@@ -1,0 +1,70 @@
+#include "hubrt/runtime/hub.h"
+
+#include <ctime>
+
+#include <spdlog/spdlog.h>
+
+namespace hubrt::runtime {
+namespace {
+
+// Wall time, not CPU time: a cycle that waits on a device is late even when it burns no CPU.
+Duration monotonic_now() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::chrono::seconds(ts.tv_sec) + std::chrono::nanoseconds(ts.tv_nsec);
+}
+
+}  // namespace
+
+Hub::Hub(HubOptions options) : options_(std::move(options)) {
+  if (!options_.log) options_.log = spdlog::default_logger();
+}
+
+void Hub::add_node(std::unique_ptr<NodeBase> node) {
+  nodes_.push_back(std::move(node));
+}
+void Hub::add_stage(std::unique_ptr<CycleStage> stage) {
+  stages_.push_back(std::move(stage));
+}
+void Hub::keep_alive(std::shared_ptr<void> owned) {
+  owned_.push_back(std::move(owned));
+}
+
+NodeBase* Hub::find_node(std::string_view name) const noexcept {
+  for (const auto& node : nodes_) {
+    if (node->name() == name) return node.get();
+  }
+  return nullptr;
+}
+
+void Hub::cycle(const Instant& now) noexcept {
+  const Duration started = monotonic_now();
+  ++stats_.cycles;
+  step(now, true);
+  stats_.last_cycle = monotonic_now() - started;
+  if (stats_.last_cycle > stats_.max_cycle) stats_.max_cycle = stats_.last_cycle;
+}
+
+void Hub::command_step(const Instant& now) noexcept {
+  ++stats_.command_steps;
+  step(now, false);
+}
+
+void Hub::step(const Instant& now, bool publish_all) noexcept {
+  for (const auto& stage : stages_) stage->before_nodes(now);
+  bool any_took_effect = false;
+  for (const auto& node : nodes_) {
+    const bool took_effect = node->step(now);
+    any_took_effect |= took_effect;
+    if (publish_all || took_effect) {
+      if (!node->publish(now).is_ok()) ++stats_.publish_errors;
+    }
+  }
+  for (const auto& stage : stages_) stage->after_nodes(now, publish_all, any_took_effect);
+}
+
+void Hub::enter_safe_state() noexcept {
+  for (const auto& node : nodes_) node->enter_safe_state();
+}
+
+}  // namespace hubrt::runtime

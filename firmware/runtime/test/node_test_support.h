@@ -1,0 +1,93 @@
+// In-memory ports for node tests: a queue of commands and a sink that counts what it publishes.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hubrt/runtime/ports.h"
+
+#include "valve_logic.h"
+
+namespace hubrt::runtime::testing {
+
+// A command whose strings live as long as it does.
+struct OwnedValveCommand {
+  std::string target_type = "valve";
+  std::string target_name = "v1";
+  std::string action = "open";
+  float pressure_bar = 2.5f;
+  std::vector<std::string> tags;
+
+  // The wire struct, pointing into this object; valid until it is changed or destroyed.
+  ValveCommand wire() {
+    tag_pointers_.clear();
+    for (auto& tag : tags) tag_pointers_.push_back(tag.data());
+    ValveCommand c{};
+    c.target_type = target_type.data();
+    c.target_name = target_name.data();
+    c.action = action.data();
+    c.pressure_bar = pressure_bar;
+    c.tags._length = static_cast<std::uint32_t>(tag_pointers_.size());
+    c.tags._maximum = c.tags._length;
+    c.tags._buffer = tag_pointers_.data();
+    c.tags._release = false;
+    return c;
+  }
+
+ private:
+  std::vector<char*> tag_pointers_;
+};
+
+class QueueSource final : public CommandSource<ValveCommand> {
+ public:
+  // Copies the command and builds its wire form now, so that next() never allocates.
+  void push(const OwnedValveCommand& command) {
+    auto owned = std::make_unique<OwnedValveCommand>(command);
+    wires_.push_back(owned->wire());
+    queue_.push_back(std::move(owned));
+  }
+  void fail_next() { fail_next_ = true; }
+  // Limits delivery to the first `count` commands pushed so far (all, by default), so that a test
+  // can queue everything up front and hand commands out per cycle without allocating.
+  void deliver_up_to(std::size_t count) { limit_ = count; }
+  Result<const ValveCommand*> next() noexcept override {
+    if (fail_next_) {
+      fail_next_ = false;
+      return Status(ErrorCode::kIo);
+    }
+    if (queue_.empty() || delivered_ >= limit_) return static_cast<const ValveCommand*>(nullptr);
+    ++delivered_;
+    current_ = std::move(queue_.front());
+    queue_.pop_front();
+    wire_ = wires_.front();
+    wires_.pop_front();
+    return &wire_;
+  }
+  [[nodiscard]] std::size_t pending() const { return queue_.size(); }
+
+ private:
+  std::deque<std::unique_ptr<OwnedValveCommand>> queue_;
+  std::deque<ValveCommand> wires_;
+  std::unique_ptr<OwnedValveCommand> current_;
+  ValveCommand wire_{};
+  bool fail_next_ = false;
+  std::size_t delivered_ = 0;
+  std::size_t limit_ = SIZE_MAX;
+};
+
+class CountingSink final : public StateSink<ValveState> {
+ public:
+  Status publish(const ValveState& state) noexcept override {
+    ++count;
+    last_seq = state.header.seq;
+    last_sec = state.header.stamp.sec;
+    return Status::ok();
+  }
+  std::uint64_t count = 0;
+  std::uint64_t last_seq = 0;
+  std::int32_t last_sec = 0;
+};
+
+}  // namespace hubrt::runtime::testing

@@ -1,0 +1,59 @@
+#include "dock_ecu_hub_type.h"
+
+#include <fmt/format.h>
+
+#include "hubrt/assembly/node_wiring.h"
+
+#include "dock_logic.h"
+
+namespace hubrt::dock_ecu {
+namespace {
+
+class DockEcuHubType final : public assembly::HubType {
+ public:
+  [[nodiscard]] std::string_view name() const noexcept override { return "dock_ecu"; }
+
+  [[nodiscard]] Expected<hal::BoardRequirements> requirements(
+      const config::HubConfig& config) const override {
+    hal::BoardRequirements required;
+    required.hub = config.type;
+    for (const config::NodeConfig& node : config.nodes) {
+      if (node.type != DockLogic::kType) {
+        return node.settings.error_at(
+            "type",
+            fmt::format("a dock_ecu hub has nodes of type '{}' only, not '{}'", DockLogic::kType, node.type));
+      }
+      auto slots = parse_slots(node);
+      if (!slots) return std::move(slots).error();
+      add_requirements(*slots, required);
+    }
+    return required;
+  }
+
+  [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
+    if (context.config.layout != config::Layout::kNodeType) {
+      return make_error(
+          ErrorCode::kInvalidArgument,
+          fmt::format("{}: layout 'hub' is not available for dock_ecu yet", context.config.file));
+    }
+    const Time now = context.clock.now().mono;
+    for (const config::NodeConfig& node : context.config.nodes) {
+      auto slots = parse_slots(node);
+      if (!slots) return std::move(slots).error();
+      auto logic = DockLogic::create(*slots, context.board, context.backend, now);
+      if (!logic) return std::move(logic).error();
+      auto added = assembly::add_node_type_oriented(context, hub, node, std::move(*logic));
+      if (!added) return added;
+    }
+    return {};
+  }
+};
+
+}  // namespace
+
+const assembly::HubType& dock_ecu_hub_type() noexcept {
+  static const DockEcuHubType type;
+  return type;
+}
+
+}  // namespace hubrt::dock_ecu
