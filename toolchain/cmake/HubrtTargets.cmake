@@ -71,10 +71,10 @@ function(hubrt_add_test name)
     # Under qemu-user (no binfmt_misc) a test cannot exec a target program directly: tests that
     # start programs put this space-separated command in front of them.
     list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
-    set(_cross_env "  set_property(TEST \"\${_t}\" APPEND PROPERTY ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\")\n")
+    set(_cross_env " ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\"")
   endif()
   set(_props ${CMAKE_CURRENT_BINARY_DIR}/${name}_properties.cmake)
   file(GENERATE OUTPUT ${_props} CONTENT
-    "foreach(_t IN LISTS ${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${A_LABELS}\" TIMEOUT ${A_TIMEOUT})\n${_cross_env}endforeach()\n")
+    "foreach(_t IN LISTS ${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${A_LABELS}\" TIMEOUT ${A_TIMEOUT}${_cross_env})\nendforeach()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_props})
 endfunction()

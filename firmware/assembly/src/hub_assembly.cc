@@ -12,6 +12,7 @@
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/hal/linux/backend.h"
+#include "hubrt/sim/sim_bridge_stage.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -101,6 +102,11 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
+  }
+  if (out->fake != nullptr) {
+    auto bridge = sim::SimBridgeStage::create(*out->participant, out->config.name, out->board, *out->fake, log);
+    if (!bridge) return std::move(bridge).error();
+    out->hub->add_stage(std::move(*bridge));
   }
   return out;
 }

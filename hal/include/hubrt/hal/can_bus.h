@@ -40,6 +40,7 @@ struct CanBusStatus {
   std::uint16_t tx_errors = 0;  // transmit error counter, when the backend knows it
   std::uint16_t rx_errors = 0;  // receive error counter, when the backend knows it
   std::uint32_t error_frames = 0;  // error frames seen since open
+  std::uint32_t rx_dropped = 0;    // received frames dropped because the receive queue was full
 };
 
 struct CanConfig {

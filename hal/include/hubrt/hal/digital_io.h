@@ -19,6 +19,9 @@ struct DigitalInputConfig {
   Polarity polarity = Polarity::kActiveHigh;
   Bias bias = Bias::kAsIs;
   Duration debounce{0};  // a level must hold this long before read() reports it; 0 = off
+  // A pulse that starts and ends between two reads is reported for one read instead of being lost
+  // (Linux: edge events; rule in hubrt/hal/common/pulse_catcher.h). Pointless with debounce > 0.
+  bool catch_pulses = false;
 };
 
 struct DigitalOutputConfig {

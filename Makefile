@@ -1,0 +1,60 @@
+# Entry points. Each target installs what is missing (toolchain/install-deps) first.
+#   make demo        build and run the simulated station with a live view of every State
+#   make test        the default suite: ASan+UBSan build, all tests; TSan build, threaded tests
+#   make bench       benchmarks, results into docs/benchmarks.md (slow; not in the default suite)
+#   make kernel-test the Linux backends against vcan and gpio-sim in a VM (tests/kernel/README.md)
+#   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
+#   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
+JOBS ?= 2
+CMAKE_BUILD = cmake --build --preset
+
+help:
+	@sed -n '1,8p' Makefile | sed 's/^# \{0,1\}//'
+
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench kernel-test cross-test format format-check lint
+
+deps:
+	@toolchain/install-deps
+
+build: deps
+	@cmake --preset host-release >/dev/null
+	@$(CMAKE_BUILD) host-release -j$(JOBS) --target hubd hubctl
+
+demo: build
+	@toolchain/demo
+
+test: test-asan test-tsan
+
+test-asan: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS)
+	@ctest --preset host-asan -j$(JOBS)
+
+test-tsan: deps
+	@cmake --preset host-tsan >/dev/null
+	@$(CMAKE_BUILD) host-tsan -j$(JOBS)
+	@ctest --preset host-tsan -j$(JOBS)
+
+test-debug: deps
+	@cmake --preset host-debug >/dev/null
+	@$(CMAKE_BUILD) host-debug -j$(JOBS)
+	@ctest --preset host-debug -j$(JOBS)
+
+kernel-test: deps
+	@cmake --preset host-debug >/dev/null
+	@$(CMAKE_BUILD) host-debug -j$(JOBS)
+	@tests/kernel/run --build-dir build/host-debug
+
+cross-test: deps
+	@toolchain/cross-test $(or $(ARCH),arm64)
+
+format:
+	@git ls-files '*.cc' '*.h' '*.cpp' | xargs clang-format -i
+
+format-check:
+	@git ls-files '*.cc' '*.h' '*.cpp' | xargs clang-format --dry-run -Werror
+
+lint: format-check
+	@cmake --preset host-debug >/dev/null
+	@$(CMAKE_BUILD) host-debug -j$(JOBS)
+	@git ls-files '*.cc' | grep -v '/test/' | xargs -P$(JOBS) -n8 clang-tidy -p build/host-debug --quiet

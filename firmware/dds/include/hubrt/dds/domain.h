@@ -1,0 +1,43 @@
+// Which DDS domain a participant joins and with which Cyclone configuration.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "hubrt/base/status.h"
+
+namespace hubrt::dds {
+
+// The domain id and the Cyclone XML configuration for a participant.
+//   cyclone_xml empty     -> Cyclone's defaults, or whatever CYCLONEDDS_URI says.
+//   cyclone_xml non-empty -> this configuration (XML fragments or file URIs, as CYCLONEDDS_URI
+//                            accepts), applied by creating the domain explicitly.
+// Cyclone keeps one configuration per domain per process: the first participant that creates a
+// domain decides its configuration, and later participants in the same process and domain share
+// it whatever their cyclone_xml says, until every participant of that domain is gone.
+struct DomainConfig {
+  std::uint32_t domain_id = 0;
+  std::string cyclone_xml;
+};
+
+// Highest domain id usable with Cyclone's default port mapping (7400 + 250 * id + offsets must
+// stay below 65536).
+inline constexpr std::uint32_t kMaxDomainId = 232;
+
+// The configuration that keeps a participant on the loopback interface: interface "lo", no
+// multicast, unicast discovery to 127.0.0.1 with automatic participant indices (up to 32
+// participants on the host; Cyclone's default of 9 caps a unicast host at 10). Valid for any
+// domain id. Used by tests and by single-machine demos. Thread-safe.
+std::string loopback_config_xml();
+
+// The environment variable that carries the domain id to hubd and hubctl, as in ROS 2.
+inline constexpr const char* kDomainIdEnvVar = "ROS_DOMAIN_ID";
+
+// DomainConfig from the process environment: domain id from ROS_DOMAIN_ID (0 when unset), empty
+// cyclone_xml so that Cyclone itself reads CYCLONEDDS_URI.
+// Errors: kInvalidArgument naming the variable and its value when ROS_DOMAIN_ID is not an integer
+// in 0..kMaxDomainId.
+// Thread-safety: reads the environment; do not call while another thread calls setenv().
+Expected<DomainConfig> domain_config_from_environment();
+
+}  // namespace hubrt::dds

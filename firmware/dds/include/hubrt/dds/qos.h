@@ -1,0 +1,45 @@
+// DDS quality of service as hubrt uses it: always XCDR1 (the representation ROS 2 and Fast DDS
+// peers understand), ROS 2 profiles as starting points.
+#pragma once
+
+#include <cstdint>
+
+#include <dds/dds.h>
+
+namespace hubrt::dds {
+
+// An owned dds_qos_t. Copyable (deep copy) and movable; a moved-from Qos holds Cyclone defaults
+// plus XCDR1 again, never a null pointer. Every Qos sets the data representation to XCDR1 only.
+// Thread-safety: not thread-safe; a const Qos may be shared for reading.
+class Qos {
+ public:
+  // Cyclone's defaults with XCDR1 as the only data representation.
+  Qos();
+  ~Qos();
+  Qos(const Qos& other);
+  Qos& operator=(const Qos& other);
+  Qos(Qos&& other) noexcept;
+  Qos& operator=(Qos&& other) noexcept;
+
+  // ROS 2's default profile: reliable, volatile, keep-last `depth` (10 in ROS 2).
+  static Qos ros2_default(std::int32_t depth = 10);
+  // ROS 2's sensor-data profile: best-effort, volatile, keep-last `depth` (5 in ROS 2).
+  static Qos sensor_data(std::int32_t depth = 5);
+
+  // Builder steps; each returns *this. Depth must be >= 1 (Cyclone rejects the QoS at entity
+  // creation otherwise, with an error naming the entity).
+  Qos& reliable();
+  Qos& best_effort();
+  Qos& volatile_durability();
+  Qos& transient_local();
+  Qos& keep_last(std::int32_t depth);
+  Qos& keep_all();
+
+  // For Cyclone calls; valid while this Qos lives.
+  [[nodiscard]] const dds_qos_t* get() const noexcept { return qos_; }
+
+ private:
+  dds_qos_t* qos_;
+};
+
+}  // namespace hubrt::dds

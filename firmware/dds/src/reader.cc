@@ -1,0 +1,68 @@
+#include "hubrt/dds/reader.h"
+
+#include "hubrt/dds/retcode.h"
+
+#include "matched_count.h"
+
+namespace hubrt::dds {
+namespace {
+
+// Runs on a Cyclone thread; the callback's contract (no blocking, no throwing) is documented at
+// DataAvailableCallback. noexcept turns a broken contract into a clear terminate.
+void invoke_data_available(dds_entity_t /*reader*/, void* arg) noexcept {
+  (*static_cast<DataAvailableCallback*>(arg))();
+}
+
+struct ListenerDeleter {
+  void operator()(dds_listener_t* listener) const noexcept { dds_delete_listener(listener); }
+};
+
+}  // namespace
+
+Expected<UntypedReader> UntypedReader::create(const Participant& participant, const UntypedTopic& topic,
+                                              const Qos& qos, DataAvailableCallback on_data_available) {
+  std::unique_ptr<DataAvailableCallback> callback;
+  std::unique_ptr<dds_listener_t, ListenerDeleter> listener;
+  if (on_data_available) {
+    callback = std::make_unique<DataAvailableCallback>(std::move(on_data_available));
+    listener.reset(dds_create_listener(callback.get()));
+    dds_lset_data_available(listener.get(), &invoke_data_available);
+  }
+  // Cyclone copies the listener, so ours can go when this returns.
+  const dds_entity_t handle =
+      dds_create_reader(participant.handle(), topic.handle(), qos.get(), listener.get());
+  if (handle < 0) {
+    return dds_error(
+        handle, "create reader on '" + topic.dds_name() + "' in domain " + std::to_string(topic.domain_id()));
+  }
+  return UntypedReader(std::move(callback), EntityHandle(handle), topic.dds_name(), topic.descriptor());
+}
+
+Result<bool> UntypedReader::take_next(void* sample, SampleInfo* info) noexcept {
+  for (;;) {
+    // A non-null buf[0] makes Cyclone deserialise into the caller's sample, reusing its buffers,
+    // instead of loaning one of its own.
+    void* buffers[1] = {sample};
+    dds_sample_info_t sample_info;
+    const dds_return_t n = dds_take(handle_.get(), buffers, &sample_info, 1, 1);
+    if (n < 0) return to_status(n);
+    if (n == 0) return false;
+    if (!sample_info.valid_data) continue;
+    if (info != nullptr) {
+      info->source_time = WallTime{sample_info.source_timestamp};
+      info->publication_handle = sample_info.publication_handle;
+    }
+    return true;
+  }
+}
+
+Result<std::uint32_t> UntypedReader::matched_writers() const noexcept {
+  return detail::matched_count(handle_.get(), detail::EndpointKind::kReader);
+}
+
+Expected<void> UntypedReader::wait_for_writers(std::uint32_t count, Duration timeout) const {
+  return detail::wait_for_matched(handle_.get(), detail::EndpointKind::kReader, count, timeout,
+                                  "wait for writers of reader on '" + topic_name_ + "'");
+}
+
+}  // namespace hubrt::dds

@@ -1,0 +1,57 @@
+#include "hubrt/dds/domain.h"
+
+#include <stdlib.h>
+
+#include <gtest/gtest.h>
+
+namespace hubrt::dds {
+namespace {
+
+// Each TEST runs in its own process (gtest_discover_tests), so changing the environment here
+// cannot leak into other tests; it is restored anyway. No other thread runs meanwhile.
+// NOLINTBEGIN(concurrency-mt-unsafe)
+class DomainFromEnvironment : public ::testing::Test {
+ protected:
+  void TearDown() override { ::unsetenv(kDomainIdEnvVar); }
+  static void set(const char* value) { ASSERT_EQ(::setenv(kDomainIdEnvVar, value, 1), 0); }
+};
+
+TEST_F(DomainFromEnvironment, UnsetMeansDomainZeroAndCycloneReadsItsOwnUri) {
+  ::unsetenv(kDomainIdEnvVar);
+  auto config = domain_config_from_environment();
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->domain_id, 0u);
+  EXPECT_TRUE(config->cyclone_xml.empty());
+}
+
+TEST_F(DomainFromEnvironment, ReadsRosDomainId) {
+  set("42");
+  auto config = domain_config_from_environment();
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->domain_id, 42u);
+}
+
+TEST_F(DomainFromEnvironment, RejectsNonNumbersAndIdsOutOfRange) {
+  for (const char* bad : {"abc", "12x", "-1", "233"}) {
+    set(bad);
+    auto config = domain_config_from_environment();
+    ASSERT_FALSE(config) << bad;
+    EXPECT_EQ(config.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(config.error().message.find(std::string("ROS_DOMAIN_ID='") + bad + "'"), std::string::npos)
+        << config.error().message;
+  }
+}
+
+TEST(LoopbackConfig, PinsLoopbackWithoutMulticastAnd32Participants) {
+  const std::string xml = loopback_config_xml();
+  EXPECT_NE(xml.find("<NetworkInterface name=\"lo\"/>"), std::string::npos);
+  EXPECT_NE(xml.find("<AllowMulticast>false</AllowMulticast>"), std::string::npos);
+  EXPECT_NE(xml.find("<ParticipantIndex>auto</ParticipantIndex>"), std::string::npos);
+  EXPECT_NE(xml.find("<MaxAutoParticipantIndex>32</MaxAutoParticipantIndex>"), std::string::npos);
+  EXPECT_NE(xml.find("<Peer address=\"127.0.0.1\"/>"), std::string::npos);
+}
+
+// NOLINTEND(concurrency-mt-unsafe)
+
+}  // namespace
+}  // namespace hubrt::dds

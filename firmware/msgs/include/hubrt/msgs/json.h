@@ -1,0 +1,34 @@
+// Samples of generated types to and from JSON, driven by their TypeInfo. For tools (hubctl echo
+// and send, logs), not for the fixed-rate cycle: these allocate.
+//
+// Mapping: struct <-> object (fields in declaration order), sequence and array <-> array,
+// bool <-> true/false, integers and octet <-> integers, float32/float64 <-> numbers (NaN and
+// infinities become null, and null reads back as NaN), string <-> string.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "hubrt/base/status.h"
+#include "hubrt/msgs/type_info.h"
+
+namespace hubrt::msgs {
+
+// Field order is kept (ordered_json); converts implicitly to nlohmann::json if needed.
+// Precondition: `sample` points to a valid instance of `type` (null strings read as "").
+// Allocates; never fails. Thread-safe for concurrent reads of the same sample.
+nlohmann::ordered_json to_json(const TypeInfo& type, const void* sample);
+
+// Assigns the fields present in `value` (an object) to `sample`; absent fields keep their values,
+// a sequence given is replaced whole. Strings and sequence buffers are allocated with
+// dds_string_dup / dds_alloc (sequences with _release = true), and replaced ones freed, so that
+// dds_sample_free(sample, desc, DDS_FREE_CONTENTS) or free_contents() releases everything.
+// Precondition: the sample owns its strings and sequence buffers (zeroed, or filled by
+// from_json/set_field/dds_read) — never a runtime sample that points into fixed buffers.
+// Errors (the sample is left unchanged; the message names the field path):
+//   kInvalidArgument  unknown field (with suggestions), wrong JSON type, string with a NUL byte,
+//                     array of the wrong length;
+//   kOutOfRange       a number outside its field's range, too many elements for a bounded sequence.
+// Not thread-safe for the same sample.
+Expected<void> from_json(const TypeInfo& type, const nlohmann::ordered_json& value, void* sample);
+
+}  // namespace hubrt::msgs

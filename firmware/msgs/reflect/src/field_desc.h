@@ -1,0 +1,31 @@
+/* One struct member as the reflection tables describe it, read from idlc's AST. */
+#ifndef HUBRT_REFLECT_FIELD_DESC_H
+#define HUBRT_REFLECT_FIELD_DESC_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "idl/processor.h"
+
+#define REFLECT_NAME_MAX 512
+
+typedef struct reflect_field_desc {
+  const char* name;
+  const char* kind;         /* FieldKind enumerator, e.g. "kSequence" */
+  const char* element_kind; /* FieldKind enumerator of one element (== kind when not a container) */
+  uint32_t bound;           /* array length, or sequence maximum (0 = unbounded) */
+  bool is_sequence;
+  bool is_array;
+  /* C++ spelling of one element as idlc's C header declares it: "float", "char*", "::T_". */
+  char element_c_type[REFLECT_NAME_MAX + 4];
+  char nested_c_name[REFLECT_NAME_MAX]; /* C name of the element struct, "" when none */
+} reflect_field_desc_t;
+
+/* Describes declarator `declarator` of `member` of the struct named `owner` (for messages).
+ * Constructs the tables cannot describe (unions, enums, bounded strings, @optional, nested
+ * sequences, multi-dimensional arrays, ...) are reported with idl_error() at their location;
+ * returns false then. */
+bool reflect_describe_field(const idl_pstate_t* pstate, const char* owner, const idl_member_t* member,
+                            const idl_declarator_t* declarator, reflect_field_desc_t* out);
+
+#endif

@@ -1,0 +1,28 @@
+#include "hubrt/hal/linux/backend.h"
+
+#include "hubrt/hal/common/debounced_input.h"
+#include "hubrt/hal/libmodbus/open_libmodbus.h"
+#include "hubrt/hal/linux/gpiod_lines.h"
+#include "hubrt/hal/socketcan/open_socketcan.h"
+
+namespace hubrt::hal {
+
+Expected<std::unique_ptr<DigitalInput>> LinuxBackend::open_input(const DigitalInputConfig& config) {
+  auto input = open_gpiod_input(config);
+  if (!input) return input;
+  return debounce(std::move(*input), config.debounce);
+}
+
+Expected<std::unique_ptr<DigitalOutput>> LinuxBackend::open_output(const DigitalOutputConfig& config) {
+  return open_gpiod_output(config);
+}
+
+Expected<std::unique_ptr<CanBus>> LinuxBackend::open_can(const CanConfig& config) {
+  return socketcan::open_socketcan(config);
+}
+
+Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusConfig& config) {
+  return libmodbus::open_libmodbus(config);
+}
+
+}  // namespace hubrt::hal

@@ -1,0 +1,33 @@
+#include "hub_process.h"
+
+#include <fmt/format.h>
+
+namespace hubrt::integration {
+
+Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain, const HubProcessOptions& options) {
+  std::vector<std::string> args = {"--board", options.board, "--hub", options.hub};
+  args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
+  test_support::Environment env = domain.env();
+  env.insert(env.end(), options.extra_env.begin(), options.extra_env.end());
+  env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
+  auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  if (!child) return std::move(child).error();
+  if (!child->wait_for_output("running hub", std::chrono::seconds(20))) {
+    return make_error(ErrorCode::kTimeout, fmt::format("hubd did not start; its output:\n{}{}", child->stdout_text(),
+                                                       child->stderr_text()));
+  }
+  return HubProcess(std::move(*child));
+}
+
+Expected<Finished> run_hubd(const test_support::TestDomain& domain, const std::vector<std::string>& args,
+                            Duration timeout) {
+  test_support::Environment env = domain.env();
+  env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
+  auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  if (!child) return std::move(child).error();
+  auto status = child->wait(timeout);
+  if (!status) return std::move(status).error();
+  return Finished{*status, child->stdout_text() + child->stderr_text()};
+}
+
+}  // namespace hubrt::integration

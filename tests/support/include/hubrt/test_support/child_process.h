@@ -1,0 +1,74 @@
+// Starting a program (hubd, a probe) from a test, watching its output and stopping it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <sys/types.h>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/test_support/test_domain.h"
+
+namespace hubrt::test_support {
+
+// How a child ended: exit code or the signal that killed it.
+struct ExitStatus {
+  std::optional<int> exit_code;    // set when it exited
+  std::optional<int> term_signal;  // set when a signal ended it
+
+  [[nodiscard]] bool exited_with(int code) const noexcept { return exit_code == code; }
+  [[nodiscard]] bool killed_by(int signal) const noexcept { return term_signal == signal; }
+  // "exit code 3" / "killed by signal 15 (Terminated)".
+  [[nodiscard]] std::string describe() const;
+};
+
+// A child process whose stdout and stderr go to files in a private temporary directory (files,
+// not pipes, so a chatty child never blocks on a full pipe and the output survives for the
+// failure message). stdin is /dev/null. Move-only.
+// The destructor kills a child that still runs (SIGKILL to its own PID only), reaps it and
+// removes the output files.
+// Thread-safety: none; use from one thread.
+class ChildProcess {
+ public:
+  // Starts `program` (a path, or a name looked up in PATH if it contains no '/') with `args`
+  // (argv[1..]) and the current environment plus `extra_env` (which overrides same-named
+  // variables). Errors: kIo naming the program when the output directory cannot be made or
+  // spawning fails (e.g. no such file).
+  static Expected<ChildProcess> start(const std::string& program, const std::vector<std::string>& args,
+                                      const Environment& extra_env = {});
+
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&& other) noexcept;
+
+  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
+  // Everything the child wrote so far.
+  [[nodiscard]] std::string stdout_text() const;
+  [[nodiscard]] std::string stderr_text() const;
+
+  // Polls stdout and stderr until one contains `needle` (true), or until `timeout` passes or the
+  // child has exited without writing it (false). Does not reap the child.
+  bool wait_for_output(std::string_view needle, Duration timeout) const;
+
+  // Sends `signal` to the child. Errors: kFailedPrecondition if it was already reaped.
+  Expected<void> signal(int sig) const;
+
+  // Waits for the child to end and reaps it. Errors: kTimeout if it still runs after
+  // `timeout` (it keeps running); kFailedPrecondition if already reaped.
+  Expected<ExitStatus> wait(Duration timeout);
+
+ private:
+  ChildProcess(pid_t pid, std::string dir) noexcept : pid_(pid), dir_(std::move(dir)) {}
+  void kill_and_reap() noexcept;
+  [[nodiscard]] bool has_exited() const noexcept;
+
+  pid_t pid_ = -1;  // -1 once reaped
+  std::string dir_;
+};
+
+}  // namespace hubrt::test_support

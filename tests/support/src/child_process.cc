@@ -1,0 +1,264 @@
+#include "hubrt/test_support/child_process.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <thread>
+#include <utility>
+
+#include <sys/syscall.h>
+#include <sys/wait.h>
+
+extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX declares it nowhere
+
+namespace hubrt::test_support {
+namespace {
+
+std::string errno_text(int err) {
+  return std::system_category().message(err);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Owns posix_spawn's C structures for the duration of one spawn.
+struct SpawnSetup {
+  posix_spawn_file_actions_t actions{};
+  posix_spawnattr_t attr{};
+  SpawnSetup() {
+    posix_spawn_file_actions_init(&actions);
+    posix_spawnattr_init(&attr);
+  }
+  ~SpawnSetup() {
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attr);
+  }
+  SpawnSetup(const SpawnSetup&) = delete;
+  SpawnSetup& operator=(const SpawnSetup&) = delete;
+};
+
+std::vector<std::string> child_environment(const Environment& extra) {
+  std::set<std::string> overridden;
+  for (const auto& [name, value] : extra) overridden.insert(name);
+  std::vector<std::string> env;
+  for (char** entry = environ; entry != nullptr && *entry != nullptr; ++entry) {
+    const std::string_view text(*entry);
+    const std::string name(text.substr(0, text.find('=')));
+    if (!overridden.contains(name)) env.emplace_back(text);
+  }
+  for (const auto& [name, value] : extra) {
+    std::string entry = name;
+    entry += '=';
+    entry += value;
+    env.push_back(std::move(entry));
+  }
+  return env;
+}
+
+std::vector<char*> as_argv(std::vector<std::string>& strings) {
+  std::vector<char*> pointers;
+  pointers.reserve(strings.size() + 1);
+  for (std::string& s : strings) pointers.push_back(s.data());
+  pointers.push_back(nullptr);
+  return pointers;
+}
+
+ExitStatus to_exit_status(int wait_status) {
+  ExitStatus status;
+  if (WIFEXITED(wait_status)) status.exit_code = WEXITSTATUS(wait_status);
+  if (WIFSIGNALED(wait_status)) status.term_signal = WTERMSIG(wait_status);
+  return status;
+}
+
+}  // namespace
+
+std::string ExitStatus::describe() const {
+  if (exit_code) return "exit code " + std::to_string(*exit_code);
+  if (term_signal)
+    return "killed by signal " + std::to_string(*term_signal) + " (" + sigdescr_np(*term_signal) + ")";
+  return "still running";
+}
+
+Expected<ChildProcess> ChildProcess::start(const std::string& program, const std::vector<std::string>& args,
+                                           const Environment& extra_env) {
+  std::error_code ec;
+  std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
+  if (ec) tmp = "/tmp";
+  std::string dir_template = (tmp / "hubrt-child-XXXXXX").string();
+  if (::mkdtemp(dir_template.data()) == nullptr) {
+    return make_error(ErrorCode::kIo, "start '" + program + "': cannot create output directory " +
+                                          dir_template + ": " + errno_text(errno));
+  }
+  const std::string dir = dir_template;
+  const std::string out_path = dir + "/stdout";
+  const std::string err_path = dir + "/stderr";
+
+  std::vector<std::string> argv_strings;
+  argv_strings.push_back(program);
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv = as_argv(argv_strings);
+  std::vector<std::string> env_strings = child_environment(extra_env);
+  std::vector<char*> envp = as_argv(env_strings);
+
+  SpawnSetup setup;
+  posix_spawn_file_actions_addopen(&setup.actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&setup.actions, STDOUT_FILENO, out_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&setup.actions, STDERR_FILENO, err_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // The child starts with no blocked signals and default dispositions for the ones tests send,
+  // whatever the test runner set up for itself.
+  sigset_t empty;
+  sigemptyset(&empty);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  for (const int sig : {SIGTERM, SIGINT, SIGHUP, SIGPIPE, SIGCHLD}) sigaddset(&defaults, sig);
+  posix_spawnattr_setsigmask(&setup.attr, &empty);
+  posix_spawnattr_setsigdefault(&setup.attr, &defaults);
+  posix_spawnattr_setflags(&setup.attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+
+  pid_t pid = -1;
+  const bool search_path = program.find('/') == std::string::npos;
+  const int rc =
+      search_path
+          ? ::posix_spawnp(&pid, program.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data())
+          : ::posix_spawn(&pid, program.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data());
+  if (rc != 0) {
+    std::filesystem::remove_all(dir, ec);
+    return make_error(ErrorCode::kIo, "start '" + program + "': " + errno_text(rc));
+  }
+  return ChildProcess(pid, dir);
+}
+
+ChildProcess::~ChildProcess() {
+  kill_and_reap();
+  if (!dir_.empty()) {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+}
+
+ChildProcess::ChildProcess(ChildProcess&& other) noexcept
+    : pid_(std::exchange(other.pid_, -1)), dir_(std::exchange(other.dir_, {})) {}
+
+ChildProcess& ChildProcess::operator=(ChildProcess&& other) noexcept {
+  if (this != &other) {
+    kill_and_reap();
+    if (!dir_.empty()) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir_, ec);
+    }
+    pid_ = std::exchange(other.pid_, -1);
+    dir_ = std::exchange(other.dir_, {});
+  }
+  return *this;
+}
+
+void ChildProcess::kill_and_reap() noexcept {
+  if (pid_ <= 0) return;
+  (void)::kill(pid_, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+}
+
+std::string ChildProcess::stdout_text() const {
+  return dir_.empty() ? std::string() : read_file(dir_ + "/stdout");
+}
+
+std::string ChildProcess::stderr_text() const {
+  return dir_.empty() ? std::string() : read_file(dir_ + "/stderr");
+}
+
+bool ChildProcess::has_exited() const noexcept {
+  if (pid_ <= 0) return true;
+  siginfo_t info{};
+  // WNOWAIT: look without reaping, so that wait() still gets the exit status.
+  if (::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT) != 0) return true;
+  return info.si_pid != 0;
+}
+
+bool ChildProcess::wait_for_output(std::string_view needle, Duration timeout) const {
+  // Polling files is the simplest readiness check that works for any child; 10 ms is far below
+  // any start-up time we wait for.
+  constexpr Duration kPollInterval = std::chrono::milliseconds(10);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto contains = [&] {
+    return stdout_text().find(needle) != std::string::npos || stderr_text().find(needle) != std::string::npos;
+  };
+  for (;;) {
+    // Checked before the output so that output written just before exiting is still seen.
+    const bool exited = has_exited();
+    if (contains()) return true;
+    if (exited) return false;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) return false;
+    std::this_thread::sleep_for(std::min<Duration>(kPollInterval, deadline - now));
+  }
+}
+
+Expected<void> ChildProcess::signal(int sig) const {
+  if (pid_ <= 0) return make_error(ErrorCode::kFailedPrecondition, "signal child: it was already reaped");
+  if (::kill(pid_, sig) != 0) {
+    return make_error(ErrorCode::kIo, "signal " + std::to_string(sig) + " to pid " + std::to_string(pid_) +
+                                          ": " + errno_text(errno));
+  }
+  return {};
+}
+
+Expected<ExitStatus> ChildProcess::wait(Duration timeout) {
+  if (pid_ <= 0) return make_error(ErrorCode::kFailedPrecondition, "wait for child: it was already reaped");
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + timeout;
+  // A pidfd becomes readable when the child exits, so no polling is needed where the kernel has
+  // them (Linux >= 5.3); elsewhere (old kernels, some emulators) fall back to polling.
+  // Through syscall(2): bookworm's <sys/pidfd.h> lacks extern "C", so its wrapper does not link
+  // from C++.
+  const int pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid_, 0));
+  for (;;) {
+    int status = 0;
+    const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+    if (done == pid_) {
+      if (pidfd >= 0) ::close(pidfd);
+      pid_ = -1;
+      return to_exit_status(status);
+    }
+    if (done < 0 && errno != EINTR) {
+      const int err = errno;
+      if (pidfd >= 0) ::close(pidfd);
+      return make_error(ErrorCode::kIo, "wait for pid " + std::to_string(pid_) + ": " + errno_text(err));
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
+      if (pidfd >= 0) ::close(pidfd);
+      return make_error(ErrorCode::kTimeout, "pid " + std::to_string(pid_) + " still running after " +
+                                                 std::to_string(to_seconds(now - start)) + " s");
+    }
+    const auto remaining = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    if (pidfd >= 0) {
+      pollfd fd{pidfd, POLLIN, 0};
+      (void)::poll(&fd, 1, static_cast<int>(std::min<std::int64_t>(remaining.count() + 1, 1000)));
+    } else {
+      std::this_thread::sleep_for(std::min<Duration>(std::chrono::milliseconds(5), deadline - now));
+    }
+  }
+}
+
+}  // namespace hubrt::test_support
