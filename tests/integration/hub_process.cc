@@ -4,7 +4,8 @@
 
 namespace hubrt::integration {
 
-Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain, const HubProcessOptions& options) {
+Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain,
+                                       const HubProcessOptions& options) {
   std::vector<std::string> args = {"--board", options.board, "--hub", options.hub};
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
   test_support::Environment env = domain.env();
@@ -13,8 +14,8 @@ Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain, c
   auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
   if (!child) return std::move(child).error();
   if (!child->wait_for_output("running hub", std::chrono::seconds(20))) {
-    return make_error(ErrorCode::kTimeout, fmt::format("hubd did not start; its output:\n{}{}", child->stdout_text(),
-                                                       child->stderr_text()));
+    return make_error(ErrorCode::kTimeout, fmt::format("hubd did not start; its output:\n{}{}",
+                                                       child->stdout_text(), child->stderr_text()));
   }
   return HubProcess(std::move(*child));
 }

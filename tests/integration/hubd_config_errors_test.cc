@@ -1,11 +1,10 @@
 // hubd refuses broken configuration with a message that names file, line and problem, and exit
 // code 2, before touching any device.
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include "hub_process.h"
 
@@ -52,7 +51,8 @@ TEST_F(HubdConfigErrorsTest, ABrokenHubFileNamesFileLineAndProblem) {
   const std::string hub = write("dock.yaml", "hub: dock_ecu\nrate_hz: fast\nnodes:\n  dock: {type: dock}\n");
   const Finished f = run({"--board", "host-sim", "--hub", hub});
   EXPECT_TRUE(f.status.exited_with(2)) << f.status.describe();
-  EXPECT_NE(f.output.find(hub + ":2:10: rate_hz: expected a number in [0.01, 1000], got 'fast'"), std::string::npos)
+  EXPECT_NE(f.output.find(hub + ":2:10: rate_hz: expected a number in [0.01, 1000], got 'fast'"),
+            std::string::npos)
       << f.output;
 }
 

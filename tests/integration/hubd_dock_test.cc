@@ -1,21 +1,23 @@
 // hubd as a process, on the fake HAL, talked to over real Cyclone DDS on loopback in a private
 // domain: the Dock ECU slice end to end.
-#include <gtest/gtest.h>
-#include <sys/socket.h>
-#include <sys/un.h>
 #include <unistd.h>
 
 #include <csignal>
 #include <functional>
 #include <thread>
 
-#include "dock_messages.h"
-#include "hub_process.h"
+#include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/sim/sim_bridge_stage.h"
+
+#include "dock_messages.h"
+#include "hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -128,7 +130,8 @@ TEST_F(HubdDockTest, PublishesItsStateAtTheConfiguredRateWithIncreasingSequence)
 TEST_F(HubdDockTest, EchoesACommandAndDropsFreshMsgWhenCommandsStop) {
   start_hub();
   ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience));
-  ASSERT_TRUE(wait_for_state([](const DockState& s) { return !s.fresh_msg; })) << "not fresh before any command";
+  ASSERT_TRUE(wait_for_state([](const DockState& s) { return !s.fresh_msg; }))
+      << "not fresh before any command";
   // Like the planner: the same command, repeatedly.
   std::atomic<bool> sending{true};
   std::thread planner([&] {
@@ -138,7 +141,8 @@ TEST_F(HubdDockTest, EchoesACommandAndDropsFreshMsgWhenCommandsStop) {
     }
   });
   const bool echoed = wait_for_state([](const DockState& s) {
-    return s.fresh_msg && std::string(s.echo.action) == "monitor" && std::string(s.echo.target_name) == "dock";
+    return s.fresh_msg && std::string(s.echo.action) == "monitor" &&
+           std::string(s.echo.target_name) == "dock";
   });
   sending = false;
   planner.join();
@@ -165,19 +169,21 @@ TEST_F(HubdDockTest, RejectsABadCommandWithItsReason) {
 
 TEST_F(HubdDockTest, AStateChangesWhenASimulatedSensorChanges) {
   start_hub();
-  ASSERT_TRUE(wait_for_state([](const DockState& s) { return s.slots._length == 4 && !s.slots._buffer[2].occupied; }));
+  ASSERT_TRUE(wait_for_state(
+      [](const DockState& s) { return s.slots._length == 4 && !s.slots._buffer[2].occupied; }));
   auto topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(*participant_, sim::kSimInputTopic);
   ASSERT_TRUE(topic);
   auto writer = dds::Writer<hub_msgs_msg_dds__SimInput_>::create(*participant_, *topic);
   ASSERT_TRUE(writer);
   ASSERT_TRUE(writer->wait_for_readers(1, kPatience));
   hub_msgs_msg_dds__SimInput_ input{};
-  input.hub = const_cast<char*>("dock_ecu");               // NOLINT
+  input.hub = const_cast<char*>("dock_ecu");                 // NOLINT
   input.signal = const_cast<char*>("dock.slot.smart_tool");  // NOLINT
   input.active = true;
   ASSERT_TRUE(writer->write(input).is_ok());
-  ASSERT_TRUE(wait_for_state([](const DockState& s) { return s.slots._length == 4 && s.slots._buffer[2].occupied; }))
-      << hub_->output();
+  ASSERT_TRUE(wait_for_state([](const DockState& s) {
+    return s.slots._length == 4 && s.slots._buffer[2].occupied;
+  })) << hub_->output();
   EXPECT_STREQ(state_.get().slots._buffer[2].name, "smart_tool");
 }
 
@@ -206,8 +212,8 @@ TEST_F(HubdDockTest, TellsSystemdItIsReadyAndPingsTheWatchdog) {
   ASSERT_TRUE(hub) << hub.error().message;
   std::string received;
   const auto deadline = std::chrono::steady_clock::now() + kPatience;
-  while (std::chrono::steady_clock::now() < deadline &&
-         (received.find("READY=1") == std::string::npos || received.find("WATCHDOG=1") == std::string::npos)) {
+  while (std::chrono::steady_clock::now() < deadline && (received.find("READY=1") == std::string::npos ||
+                                                         received.find("WATCHDOG=1") == std::string::npos)) {
     char buffer[4096];
     const ssize_t n = recv(fd, buffer, sizeof buffer, MSG_DONTWAIT);
     if (n > 0) {

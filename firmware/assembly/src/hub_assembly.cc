@@ -8,6 +8,7 @@
 
 #include "hubrt/assembly/diagnostics_stage.h"
 #include "hubrt/assembly/hub_type.h"
+#include "hubrt/assembly/subscriptions.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/fake/fake_backend.h"
@@ -104,7 +105,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->hub->add_stage(std::move(*diagnostics));
   }
   if (out->fake != nullptr) {
-    auto bridge = sim::SimBridgeStage::create(*out->participant, out->config.name, out->board, *out->fake, log);
+    auto bridge =
+        sim::SimBridgeStage::create(*out->participant, out->config.name, out->board, *out->fake, log);
     if (!bridge) return std::move(bridge).error();
     out->hub->add_stage(std::move(*bridge));
   }

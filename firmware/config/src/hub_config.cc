@@ -46,16 +46,18 @@ Expected<std::vector<Subscription>> subscriptions(const YamlMap& root) {
   auto entries = root.named_maps("subscriptions");
   if (!entries) return std::move(entries).error();
   for (auto& [name, map] : *entries) {
-    if (auto ok = map.only_keys({"topic", "type", "timeout_ms"}); !ok) return std::move(ok).error();
+    if (auto ok = map.only_keys({"topic", "type", "field", "timeout_ms"}); !ok) return std::move(ok).error();
     auto topic = map.string("topic");
     if (!topic) return std::move(topic).error();
     if (topic->front() != '/')
       return map.error_at("topic", "must be an absolute ROS topic name, e.g. /rsp_ecu/rsp/state");
     auto type = map.string("type");
     if (!type) return std::move(type).error();
+    auto field = map.string_or("field", "");
+    if (!field) return std::move(field).error();
     auto timeout = map.integer_or("timeout_ms", 1000, 1, 600'000);
     if (!timeout) return std::move(timeout).error();
-    out.push_back(Subscription{name, *topic, *type, std::chrono::milliseconds(*timeout)});
+    out.push_back(Subscription{name, *topic, *type, *field, std::chrono::milliseconds(*timeout)});
   }
   return out;
 }

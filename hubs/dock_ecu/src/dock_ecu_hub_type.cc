@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/node_wiring.h"
+#include "hubrt/assembly/hub_layout.h"
 
 #include "dock_logic.h"
 
@@ -31,21 +31,18 @@ class DockEcuHubType final : public assembly::HubType {
   }
 
   [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
-    if (context.config.layout != config::Layout::kNodeType) {
-      return make_error(
-          ErrorCode::kInvalidArgument,
-          fmt::format("{}: layout 'hub' is not available for dock_ecu yet", context.config.file));
-    }
+    auto wiring = assembly::NodeWiring<DockEcuTypes>::create(context, hub);
+    if (!wiring) return std::move(wiring).error();
     const Time now = context.clock.now().mono;
     for (const config::NodeConfig& node : context.config.nodes) {
       auto slots = parse_slots(node);
       if (!slots) return std::move(slots).error();
       auto logic = DockLogic::create(*slots, context.board, context.backend, now);
       if (!logic) return std::move(logic).error();
-      auto added = assembly::add_node_type_oriented(context, hub, node, std::move(*logic));
+      auto added = wiring->add(node, std::move(*logic));
       if (!added) return added;
     }
-    return {};
+    return wiring->finish();
   }
 };
 

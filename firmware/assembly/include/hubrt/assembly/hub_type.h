@@ -21,6 +21,8 @@
 
 namespace hubrt::assembly {
 
+class Subscriptions;
+
 // Everything a hub type may use while building. References outlive the built hub.
 struct HubContext {
   const config::HubConfig& config;

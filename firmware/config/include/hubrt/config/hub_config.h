@@ -29,6 +29,7 @@ struct Subscription {
   std::string name;    // how the hub's logic refers to it
   std::string topic;   // ROS topic name, e.g. "/rsp_ecu/rsp/state"
   std::string type;    // ROS type name, e.g. "hub_msgs/msg/RspState"
+  std::string field;   // for a hub-layout State: the field holding the node's State; else empty
   Duration timeout{};  // older than this counts as lost
 };
 

@@ -54,6 +54,8 @@ class Hub {
   // Wiring; before the first cycle only. `owned` keeps alive what nodes reference (ports).
   void add_node(std::unique_ptr<NodeBase> node);
   void add_stage(std::unique_ptr<CycleStage> stage);
+  // A stage that must run before every other (reading inputs the others use).
+  void add_first_stage(std::unique_ptr<CycleStage> stage);
   void keep_alive(std::shared_ptr<void> owned);
 
   // A periodic cycle at `now`; publishes every State.

@@ -121,6 +121,15 @@ class Node final : public NodeBase {
   [[nodiscard]] const CommandTracker& tracker() const noexcept { return tracker_; }
 
   bool step(const Instant& now) noexcept override {
+    const bool took_effect = advance(now);
+    rebuild_state(now.mono);
+    return took_effect;
+  }
+
+  // The two halves of step(), for layouts that must run something in between (the hub layout
+  // distributes the hub command after its own intake and collects node States before its own).
+  // advance(): takes commands, runs the watchdog, reads inputs, runs the logic, writes outputs.
+  bool advance(const Instant& now) noexcept {
     const bool took_effect = take_commands(now.mono);
     if (tracker_.check(now.mono) == CommandTracker::Watchdog::kTripped) {
       options_.log->warn("{}: no valid command for more than {:.3f} s: outputs to safe state", options_.name,
@@ -128,8 +137,25 @@ class Node final : public NodeBase {
     }
     logic_.read_inputs(now.mono);
     logic_.update(tracker_.in_force() ? &echo() : nullptr, now.mono);
-    rebuild_state(now.mono);
     return took_effect;
+  }
+  // Rebuilds the State (common fields and the logic's) from what advance() left.
+  void rebuild_state(Time now) noexcept {
+    errors_.clear();
+    // A rejection stays visible for one command timeout, or until a valid command takes effect.
+    if (has_rejection_ && now - rejected_at_ <= options_.command_timeout) {
+      errors_.add("rejected command: {}", last_rejection_.view());
+    }
+    if (tracker_.has_echo() && !tracker_.fresh()) {
+      errors_.add("command timeout: no valid command for {:.2f} s (limit {:.2f} s); outputs in safe state",
+                  to_seconds(tracker_.since_last_command(now)), to_seconds(options_.command_timeout));
+    }
+    logic_.report(state_, errors_, now);
+    state_.echo = echo();
+    state_.fresh_msg = tracker_.fresh();
+    state_.t_plus = static_cast<float>(tracker_.t_plus(now));
+    state_.got_reset = tracker_.got_reset();
+    errors_.bind(state_.error_list);
   }
 
   Status publish(const Instant& now) noexcept override {
@@ -231,24 +257,6 @@ class Node final : public NodeBase {
     if (is_reset) logic_.reset();
     options_.log->debug("{}: command took effect: action '{}'", options_.name, view(echo().action));
     return true;
-  }
-
-  void rebuild_state(Time now) noexcept {
-    errors_.clear();
-    // A rejection stays visible for one command timeout, or until a valid command takes effect.
-    if (has_rejection_ && now - rejected_at_ <= options_.command_timeout) {
-      errors_.add("rejected command: {}", last_rejection_.view());
-    }
-    if (tracker_.has_echo() && !tracker_.fresh()) {
-      errors_.add("command timeout: no valid command for {:.2f} s (limit {:.2f} s); outputs in safe state",
-                  to_seconds(tracker_.since_last_command(now)), to_seconds(options_.command_timeout));
-    }
-    logic_.report(state_, errors_, now);
-    state_.echo = echo();
-    state_.fresh_msg = tracker_.fresh();
-    state_.t_plus = static_cast<float>(tracker_.t_plus(now));
-    state_.got_reset = tracker_.got_reset();
-    errors_.bind(state_.error_list);
   }
 
   [[nodiscard]] const Command& echo() const noexcept { return echoes_[current_]; }

@@ -1,0 +1,257 @@
+// The hub-oriented layout (paper §5.4, Fig. 3a): one command topic and one State topic per hub.
+// A distributor splits the hub command into the node commands; a collector assembles the node
+// States into the hub State. Generic over any hub type whose hub-level types follow the
+// convention, checked through reflection when the hub is built:
+//
+//   <Hub>Command_ { target_type; target_name; action;  <NodeCommand> <node name>; ... }
+//   <Hub>State_   { header; name; echo; fresh_msg; t_plus; got_reset; error_list;  <NodeState> <node name>;
+//   ... }
+//
+// The hub-level command has its own common semantics (echo, fresh_msg, watchdog) with actions
+// "apply" and "reset"; each node fragment is then handled by its node exactly as in the
+// node-type layout — validated, echoed, watched. A fragment whose target_type or target_name is
+// empty is addressed to that node; a non-empty one must name it (else it is rejected).
+#pragma once
+
+#include <array>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "hubrt/assembly/dds_ports.h"
+#include "hubrt/assembly/hub_type.h"
+#include "hubrt/assembly/node_wiring.h"
+#include "hubrt/assembly/topic_names.h"
+#include "hubrt/msgs/type_info.h"
+#include "hubrt/runtime/node.h"
+
+namespace hubrt::assembly {
+
+// Hands one fragment per step to a node.
+template <class Command>
+class MailboxSource final : public runtime::CommandSource<Command> {
+ public:
+  void post(const Command& fragment) noexcept {
+    pending_ = fragment;
+    has_pending_ = true;
+  }
+  Result<const Command*> next() noexcept override {
+    if (!has_pending_) return static_cast<const Command*>(nullptr);
+    has_pending_ = false;
+    return &pending_;
+  }
+
+ private:
+  Command pending_{};
+  bool has_pending_ = false;
+};
+
+// A node's State goes nowhere on its own: the collector copies it into the hub State.
+template <class State>
+class CollectedSink final : public runtime::StateSink<State> {
+ public:
+  Status publish(const State& /*state*/) noexcept override { return Status::ok(); }
+};
+
+namespace detail {
+
+// Where one node's fragment and State live inside the hub-level types.
+class Route {
+ public:
+  virtual ~Route() = default;
+  // Posts the node's fragment of `hub_command` to the node.
+  virtual void distribute(const void* hub_command) noexcept = 0;
+  // Copies the node's State into its field of `hub_state` (pointers keep pointing into the node).
+  virtual void collect(void* hub_state) const noexcept = 0;
+};
+
+template <runtime::NodeLogic Logic>
+class NodeRoute final : public Route {
+ public:
+  using Command = typename Logic::Command;
+  using State = typename Logic::State;
+  NodeRoute(std::size_t command_offset, std::size_t state_offset, std::string node_name)
+      : command_offset_(command_offset), state_offset_(state_offset), node_name_(std::move(node_name)) {}
+
+  void attach(const runtime::Node<Logic>& node) noexcept { node_ = &node; }
+  MailboxSource<Command>& source() noexcept { return source_; }
+  CollectedSink<State>& sink() noexcept { return sink_; }
+
+  void distribute(const void* hub_command) noexcept override {
+    Command fragment{};
+    std::memcpy(&fragment, static_cast<const std::byte*>(hub_command) + command_offset_, sizeof fragment);
+    if (fragment.target_type == nullptr || *fragment.target_type == '\0') fragment.target_type = type_.data();
+    if (fragment.target_name == nullptr || *fragment.target_name == '\0')
+      fragment.target_name = node_name_.data();
+    source_.post(fragment);
+  }
+  void collect(void* hub_state) const noexcept override {
+    std::memcpy(static_cast<std::byte*>(hub_state) + state_offset_, &node_->state(), sizeof(State));
+  }
+
+ private:
+  std::size_t command_offset_;
+  std::size_t state_offset_;
+  std::string node_name_;
+  std::string type_{Logic::kType};
+  const runtime::Node<Logic>* node_ = nullptr;
+  MailboxSource<Command> source_;
+  CollectedSink<State> sink_;
+};
+
+// The hub-level command's own logic: distribute while a hub command is in force, collect always.
+template <class HubTypes>
+class HubLevelLogic {
+ public:
+  using Command = typename HubTypes::Command;
+  using State = typename HubTypes::State;
+  static constexpr std::string_view kType = HubTypes::kType;
+  static constexpr std::array<std::string_view, 2> kActions{"apply", "reset"};
+
+  explicit HubLevelLogic(std::vector<std::unique_ptr<Route>>& routes) : routes_(&routes) {}
+
+  bool validate(const Command& /*command*/, runtime::Problem& /*problem*/) const noexcept { return true; }
+  void read_inputs(Time /*now*/) noexcept {}
+  // No hub command in force (none yet, or the hub watchdog tripped): nothing is distributed, so
+  // every node's own watchdog trips in turn and drives its safe state.
+  void update(const Command* in_force, Time /*now*/) noexcept {
+    if (in_force == nullptr) return;
+    for (const auto& route : *routes_) route->distribute(in_force);
+  }
+  void reset() noexcept {}
+  void report(State& state, runtime::ErrorList& /*errors*/, Time /*now*/) noexcept {
+    for (const auto& route : *routes_) route->collect(&state);
+  }
+  void enter_safe_state() noexcept {}
+
+ private:
+  std::vector<std::unique_ptr<Route>>* routes_;
+};
+
+// The distributor before the nodes, the collector after them; owns the hub-level DDS entities.
+template <class HubTypes>
+class HubLayoutStage final : public runtime::CycleStage {
+ public:
+  using HubCommand = typename HubTypes::Command;
+  using HubState = typename HubTypes::State;
+
+  HubLayoutStage(dds::Topic<HubCommand> command_topic, dds::Topic<HubState> state_topic,
+                 DdsCommandSource<HubCommand> source, DdsStateSink<HubState> sink)
+      : command_topic_(std::move(command_topic)),
+        state_topic_(std::move(state_topic)),
+        source_(std::move(source)),
+        sink_(std::move(sink)) {}
+
+  void start(runtime::NodeOptions options) {
+    node_ = std::make_unique<runtime::Node<HubLevelLogic<HubTypes>>>(
+        std::move(options), HubLevelLogic<HubTypes>(routes_), source_, sink_, message_ops<HubCommand>());
+  }
+  std::vector<std::unique_ptr<Route>>& routes() noexcept { return routes_; }
+  [[nodiscard]] const runtime::Node<HubLevelLogic<HubTypes>>& hub_node() const noexcept { return *node_; }
+
+  void before_nodes(const Instant& now) noexcept override { took_effect_ = node_->advance(now); }
+  void after_nodes(const Instant& now, bool publish_all, bool nodes_took_effect) noexcept override {
+    node_->rebuild_state(now.mono);
+    if (publish_all || took_effect_ || nodes_took_effect) node_->publish(now).ignore();
+  }
+
+ private:
+  dds::Topic<HubCommand> command_topic_;
+  dds::Topic<HubState> state_topic_;
+  DdsCommandSource<HubCommand> source_;
+  DdsStateSink<HubState> sink_;
+  std::vector<std::unique_ptr<Route>> routes_;
+  std::unique_ptr<runtime::Node<HubLevelLogic<HubTypes>>> node_;
+  bool took_effect_ = false;
+};
+
+// The offset of field `name` of `outer` when it is a struct of type `inner`.
+Expected<std::size_t> struct_field_offset(const msgs::TypeInfo& outer, std::string_view name,
+                                          const msgs::TypeInfo& inner, std::string_view hub_file);
+
+}  // namespace detail
+
+// Adds nodes to a hub with the layout its configuration asks for. HubTypes names the hub-level
+// types: `using Command = ...; using State = ...; static constexpr std::string_view kType = "...";`
+// (both registered with HUBRT_DDS_TOPIC_TYPE).
+template <class HubTypes>
+class NodeWiring {
+ public:
+  using HubCommand = typename HubTypes::Command;
+  using HubState = typename HubTypes::State;
+
+  // Errors: the hub-level DDS entities (hub layout only).
+  static Expected<NodeWiring> create(const HubContext& context, runtime::Hub& hub) {
+    NodeWiring wiring(context, hub);
+    if (context.config.layout != config::Layout::kHub) return wiring;
+    const auto& ns = context.config.ros_namespace;
+    const runtime::Waker waker = context.waker;
+    auto command_topic =
+        dds::Topic<HubCommand>::create(context.participant, hub_command_topic(ns, context.config.name));
+    if (!command_topic) return std::move(command_topic).error();
+    auto reader = dds::Reader<HubCommand>::create(context.participant, *command_topic,
+                                                  dds::Qos::ros2_default(), [waker] { waker.wake(); });
+    if (!reader) return std::move(reader).error();
+    auto state_topic =
+        dds::Topic<HubState>::create(context.participant, hub_state_topic(ns, context.config.name));
+    if (!state_topic) return std::move(state_topic).error();
+    auto writer = dds::Writer<HubState>::create(context.participant, *state_topic);
+    if (!writer) return std::move(writer).error();
+    wiring.stage_ = std::make_unique<detail::HubLayoutStage<HubTypes>>(
+        std::move(*command_topic), std::move(*state_topic), DdsCommandSource<HubCommand>(std::move(*reader)),
+        DdsStateSink<HubState>(std::move(*writer)));
+    return wiring;
+  }
+
+  // Adds one node. Hub layout: node.name must be a field of the hub command (of the node's
+  // Command type) and of the hub State (of its State type). Errors name the hub file.
+  template <runtime::NodeLogic Logic>
+  Expected<void> add(const config::NodeConfig& node, Logic logic) {
+    if (stage_ == nullptr) return add_node_type_oriented(context_, hub_, node, std::move(logic));
+    const auto& file = context_.config.file;
+    auto command_offset = detail::struct_field_offset(msgs::type_info_of<HubCommand>(), node.name,
+                                                      msgs::type_info_of<typename Logic::Command>(), file);
+    if (!command_offset) return std::move(command_offset).error();
+    auto state_offset = detail::struct_field_offset(msgs::type_info_of<HubState>(), node.name,
+                                                    msgs::type_info_of<typename Logic::State>(), file);
+    if (!state_offset) return std::move(state_offset).error();
+    auto route = std::make_unique<detail::NodeRoute<Logic>>(*command_offset, *state_offset, node.name);
+    runtime::NodeOptions options;
+    options.name = node.name;
+    options.command_timeout = context_.config.command_timeout;
+    options.addressing = runtime::Addressing::kRejectOthers;
+    options.log = context_.log;
+    auto added =
+        std::make_unique<runtime::Node<Logic>>(std::move(options), std::move(logic), route->source(),
+                                               route->sink(), message_ops<typename Logic::Command>());
+    route->attach(*added);
+    stage_->routes().push_back(std::move(route));
+    hub_.add_node(std::move(added));
+    return {};
+  }
+
+  // Hub layout: installs the distributor and collector. Call once, after the last add().
+  Expected<void> finish() {
+    if (stage_ == nullptr) return {};
+    runtime::NodeOptions options;
+    options.name = context_.config.name;
+    options.command_timeout = context_.config.command_timeout;
+    options.addressing = runtime::Addressing::kRejectOthers;  // the topic is this hub's own
+    options.log = context_.log;
+    stage_->start(std::move(options));
+    hub_.add_stage(std::move(stage_));
+    return {};
+  }
+
+ private:
+  NodeWiring(const HubContext& context, runtime::Hub& hub) : context_(context), hub_(hub) {}
+
+  const HubContext& context_;
+  runtime::Hub& hub_;
+  std::unique_ptr<detail::HubLayoutStage<HubTypes>> stage_;
+};
+
+}  // namespace hubrt::assembly
