@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -35,8 +35,8 @@ std::string join_choices(std::initializer_list<std::string_view> choices) {
 
 }  // namespace
 
-YamlMap::YamlMap(std::shared_ptr<const std::string> file, YAML::Node node, std::string path)
-    : file_(std::move(file)), node_(std::move(node)), path_(std::move(path)) {}
+YamlMap::YamlMap(std::shared_ptr<const std::string> file, const YAML::Node& node, std::string path)
+    : file_(std::move(file)), node_(node), path_(std::move(path)) {}
 
 Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::string& name) {
   auto file = std::make_shared<const std::string>(name);
@@ -59,7 +59,7 @@ Expected<YamlMap> YamlMap::load_file(const std::string& path) {
   if (!in) {
     const int err = errno;
     return make_error(err == ENOENT ? ErrorCode::kNotFound : ErrorCode::kIo,
-                      fmt::format("{}: cannot open: {}", path, std::strerror(err)));
+                      fmt::format("{}: cannot open: {}", path, std::generic_category().message(err)));
   }
   std::stringstream text;
   text << in.rdbuf();

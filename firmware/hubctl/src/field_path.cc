@@ -37,8 +37,11 @@ std::optional<double> read_number(const void* sample, const FieldLocation& where
   const void* p = static_cast<const std::byte*>(sample) + where.offset;
   using msgs::FieldKind;
   switch (where.kind) {
-    case FieldKind::kBool:
-      return load<bool>(p) ? 1.0 : 0.0;
+    case FieldKind::kBool: {
+      bool v = false;
+      std::memcpy(&v, p, sizeof v);
+      return v ? 1.0 : 0.0;
+    }
     case FieldKind::kOctet:
     case FieldKind::kUInt8:
       return load<std::uint8_t>(p);

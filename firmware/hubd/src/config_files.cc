@@ -11,8 +11,8 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> search_folders(const std::string& kind) {
   std::vector<std::string> folders;
-  if (const char* dir = std::getenv("HUBRT_CONFIG_DIR");
-      dir != nullptr && *dir != '\0') {  // NOLINT(concurrency-mt-unsafe): read at start-up
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): read once at start-up, before any thread exists
+  if (const char* dir = std::getenv("HUBRT_CONFIG_DIR"); dir != nullptr && *dir != '\0') {
     folders.push_back(fmt::format("{}/{}", dir, kind));
   }
   folders.push_back(fmt::format("/etc/hubrt/{}", kind));

@@ -3,6 +3,8 @@
 //   hubd --board host-sim --hub dock_ecu              simulated Dock ECU on this machine
 //   hubd --board rpi4-dock-ecu                       the real thing (backend from the board)
 //   hubd --board host-sim --hub dock_ecu --check      validate the files and exit
+#include <csignal>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -35,6 +37,17 @@ struct Options {
 // Exit codes: 0 clean stop, 1 runtime failure, 2 bad command line or configuration.
 constexpr int kExitRuntime = 1;
 constexpr int kExitConfig = 2;
+
+const char* signal_name(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    default:
+      return "a signal";
+  }
+}
 
 int fail(const std::string& message, int code) {
   spdlog::error("{}", message);
@@ -139,7 +152,7 @@ int run(const Options& options) {
   }
   const runtime::CycleStats& stats = hub.stats();
   spdlog::info("stopping on {}: outputs driven to their safe state after {} cycles ({} overruns)",
-               *stopped == runtime::StopReason::kSignal ? strsignal(runner->last_signal()) : "request",
+               *stopped == runtime::StopReason::kSignal ? signal_name(runner->last_signal()) : "request",
                stats.cycles, stats.overruns);
   return 0;
 }

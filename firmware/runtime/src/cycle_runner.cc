@@ -4,7 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <sys/eventfd.h>
@@ -18,7 +18,8 @@ namespace {
 constexpr std::uint64_t kStopIncrement = std::uint64_t{1} << 40;
 
 Error system_error(const char* what) {
-  return make_error(ErrorCode::kIo, fmt::format("{} failed: {}", what, std::strerror(errno)));
+  return make_error(ErrorCode::kIo,
+                    fmt::format("{} failed: {}", what, std::generic_category().message(errno)));
 }
 
 timespec to_timespec(Duration d) {

@@ -26,6 +26,10 @@ void Hub::add_node(std::unique_ptr<NodeBase> node) {
 void Hub::add_stage(std::unique_ptr<CycleStage> stage) {
   stages_.push_back(std::move(stage));
 }
+
+void Hub::add_first_stage(std::unique_ptr<CycleStage> stage) {
+  stages_.insert(stages_.begin(), std::move(stage));
+}
 void Hub::keep_alive(std::shared_ptr<void> owned) {
   owned_.push_back(std::move(owned));
 }

@@ -61,7 +61,7 @@ class YamlMap {
   [[nodiscard]] Error error_at(std::string_view key, std::string_view message) const;
 
  private:
-  YamlMap(std::shared_ptr<const std::string> file, YAML::Node node, std::string path);
+  YamlMap(std::shared_ptr<const std::string> file, const YAML::Node& node, std::string path);
   [[nodiscard]] std::string key_path(std::string_view key) const;
   [[nodiscard]] Error located(const YAML::Mark& mark, std::string_view what, std::string_view message) const;
   Expected<YAML::Node> scalar(std::string_view key) const;
