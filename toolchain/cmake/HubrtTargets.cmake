@@ -1,7 +1,7 @@
 # Helpers every folder uses, so that warnings, sanitizers and test registration stay uniform.
 
 set(HUBRT_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
-    -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
+    -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Wimplicit-fallthrough)
 set(HUBRT_C_WARNINGS -Wall -Wextra)
 
 if(HUBRT_SANITIZE)
@@ -56,6 +56,11 @@ function(hubrt_add_test name)
   endif()
   if(NOT A_TIMEOUT)
     set(A_TIMEOUT 120)
+  endif()
+  # The kernel tier boots an x86-64 guest that runs host binaries (tests/kernel, which adds
+  # nothing in a cross build): a cross build has nothing to run kernel tests on.
+  if(CMAKE_CROSSCOMPILING AND "kernel" IN_LIST A_LABELS)
+    return()
   endif()
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)

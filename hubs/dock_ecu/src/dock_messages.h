@@ -6,6 +6,8 @@
 #include "hubrt/dds/topic_type.h"
 
 #include "dock.h"
+#include "dock_ecu.h"
+#include "dock_ecu_reflect.h"
 #include "dock_reflect.h"
 
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__DockCommand_, hub_msgs_msg_dds__DockCommand__desc);

@@ -20,10 +20,10 @@ Time FakeGpioChip::now() const noexcept {
 
 void FakeGpioChip::record(Line& line, Time at, bool high) noexcept {
   if (line.changes > 0) {
-    const LevelChange& last = line.ring[(line.changes - 1) % line.ring.size()];
+    const LevelChange& last = line.ring[static_cast<std::size_t>((line.changes - 1) % line.ring.size())];
     at = std::max(at, last.at);
   }
-  line.ring[line.changes % line.ring.size()] = LevelChange{at, high};
+  line.ring[static_cast<std::size_t>(line.changes % line.ring.size())] = LevelChange{at, high};
   ++line.changes;
 }
 
@@ -54,7 +54,7 @@ bool FakeGpioChip::was_at_since(unsigned index, bool high, std::uint64_t since) 
   // Changes were dropped from the history: two or more changes mean both levels were seen.
   if (since < oldest_kept) return line.changes - since >= 2;
   for (std::uint64_t k = since; k < line.changes; ++k) {
-    if (line.ring[k % capacity].high == high) return true;
+    if (line.ring[static_cast<std::size_t>(k % capacity)].high == high) return true;
   }
   return false;
 }
@@ -93,7 +93,7 @@ std::vector<LevelChange> FakeGpioChip::history(unsigned index) const {
   const Line& line = lines_[index];
   const std::uint64_t capacity = line.ring.size();
   const std::uint64_t first = line.changes > capacity ? line.changes - capacity : 0;
-  for (std::uint64_t k = first; k < line.changes; ++k) out.push_back(line.ring[k % capacity]);
+  for (std::uint64_t k = first; k < line.changes; ++k) out.push_back(line.ring[static_cast<std::size_t>(k % capacity)]);
   return out;
 }
 
