@@ -2,23 +2,26 @@
 #   make demo        build and run the simulated station with a live view of every State
 #   make test        the default suite: ASan+UBSan build, all tests; TSan build, threaded tests
 #   make bench       benchmarks, results into docs/benchmarks.md (slow; not in the default suite)
-#   make kernel-test the Linux backends against vcan and gpio-sim in a VM (tests/kernel/README.md)
+#   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
+#                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
 #   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
+#   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
+#   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
 JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,8p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,10p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench kernel-test cross-test format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench kernel-test cross-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
 
 build: deps
 	@cmake --preset host-release >/dev/null
-	@$(CMAKE_BUILD) host-release -j$(JOBS) --target hubd hubctl
+	@$(CMAKE_BUILD) host-release -j$(JOBS) --target hubd hubctl hubsim
 
 demo: build
 	@toolchain/demo
@@ -40,13 +43,31 @@ test-debug: deps
 	@$(CMAKE_BUILD) host-debug -j$(JOBS)
 	@ctest --preset host-debug -j$(JOBS)
 
+bench:
+	@toolchain/install-deps --bench
+	@cmake --preset host-release >/dev/null
+	@$(CMAKE_BUILD) host-release -j$(JOBS) --target bench-programs
+	@bench/run --build-dir build/host-release
+
+# Which build's "kernel" tests the VM runs: host-debug, or host-asan after `make test` (then
+# nothing is rebuilt).
+KERNEL_PRESET ?= host-debug
 kernel-test: deps
-	@cmake --preset host-debug >/dev/null
-	@$(CMAKE_BUILD) host-debug -j$(JOBS)
-	@tests/kernel/run --build-dir build/host-debug
+	@cmake --preset $(KERNEL_PRESET) >/dev/null
+	@$(CMAKE_BUILD) $(KERNEL_PRESET) -j$(JOBS)
+	@tests/kernel/run --build-dir build/$(KERNEL_PRESET)
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
+
+board:
+	@test -n "$(BOARD)" || { echo "make board: say which, e.g. make board BOARD=rpi4-tool-ecu" >&2; exit 2; }
+	@toolchain/package-board $(BOARD)
+
+deploy-docs: deps
+	@cmake --preset host-release >/dev/null
+	@$(CMAKE_BUILD) host-release -j$(JOBS) --target hubrt-board-info
+	@build/host-release/packaging/hubrt-board-info deploy-docs --doc docs/deploy.md boards/*.yaml
 
 format:
 	@git ls-files '*.cc' '*.h' '*.cpp' | xargs clang-format -i

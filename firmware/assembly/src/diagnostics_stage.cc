@@ -26,23 +26,26 @@ std::uint8_t level_of(runtime::Health health) noexcept {
 Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(const dds::Participant& participant,
                                                                      const runtime::Hub& hub,
                                                                      std::string hardware_id,
-                                                                     Duration interval) {
+                                                                     Duration interval,
+                                                                     Duration command_timeout) {
   auto topic = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, kDiagnosticsTopic);
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();
-  return std::unique_ptr<DiagnosticsStage>(
-      new DiagnosticsStage(std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval));
+  return std::unique_ptr<DiagnosticsStage>(new DiagnosticsStage(
+      std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval, command_timeout));
 }
 
 DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
-                                   const runtime::Hub& hub, std::string hardware_id, Duration interval)
+                                   const runtime::Hub& hub, std::string hardware_id, Duration interval,
+                                   Duration command_timeout)
     : topic_(std::move(topic)),
       writer_(std::move(writer)),
       hub_(hub),
       hardware_id_(std::move(hardware_id)),
       interval_(interval),
+      command_timeout_(command_timeout),
       statuses_(hub.nodes().size() + 1),
       wire_statuses_(hub.nodes().size() + 1) {
   for (std::size_t i = 0; i < statuses_.size(); ++i) {
@@ -82,6 +85,8 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   };
   add("hub_type", hub_.options().type);
   add("period_ms", period_ms);
+  add("rate_hz", 1e3 / period_ms);
+  if (command_timeout_ > Duration::zero()) add("command_timeout_ms", to_seconds(command_timeout_) * 1e3);
   add("cycles", stats.cycles);
   add("command_steps", stats.command_steps);
   add("overruns", stats.overruns);

@@ -93,14 +93,18 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   options.period = out->config.period;
   options.log = log;
   out->hub = std::make_unique<runtime::Hub>(std::move(options));
+  out->subscriptions = std::make_unique<Subscriptions>(out->config, *out->participant);
   const HubContext context{out->config,   out->board, *out->backend, *out->participant,
-                           request.waker, log,        clock};
+                           request.waker, log,        clock,         *out->subscriptions};
   if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();
+  // Other hubs' States are taken before the nodes step, so the logic sees this cycle's.
+  if (auto stage = out->subscriptions->make_stage()) out->hub->add_first_stage(std::move(stage));
 
   if (out->config.diagnostics_hz > 0) {
     const auto interval =
         std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / out->config.diagnostics_hz));
-    auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval);
+    auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval,
+                                                out->config.command_timeout);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
   }

@@ -8,7 +8,6 @@
 
 #include <fmt/format.h>
 
-#include "commands.h"
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/ros_names.h"
@@ -16,6 +15,8 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
+
+#include "commands.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -52,7 +53,8 @@ struct Watched {
 
 // The node-specific part of a State in one line: every field after the common ones.
 std::string details(const nlohmann::ordered_json& state) {
-  static const std::set<std::string> kCommon = {"header", "name", "echo", "fresh_msg", "t_plus", "got_reset", "error_list"};
+  static const std::set<std::string> kCommon = {"header", "name",      "echo",      "fresh_msg",
+                                                "t_plus", "got_reset", "error_list"};
   std::string out;
   for (const auto& [key, value] : state.items()) {
     if (kCommon.count(key) != 0) continue;
@@ -61,7 +63,9 @@ std::string details(const nlohmann::ordered_json& state) {
       for (const auto& item : value) {  // e.g. dock slots: "smart_tool=1"
         std::string flags;
         for (const auto& [k, v] : item.items()) {
-          if (k != "name") flags += fmt::format("{}{}", flags.empty() ? "" : ",", v.is_boolean() ? (v.get<bool>() ? "1" : "0") : v.dump());
+          if (k != "name")
+            flags += fmt::format("{}{}", flags.empty() ? "" : ",",
+                                 v.is_boolean() ? (v.get<bool>() ? "1" : "0") : v.dump());
         }
         text += fmt::format("{}{}={}", text.empty() ? "" : " ", item["name"].get<std::string>(), flags);
       }
@@ -77,10 +81,12 @@ std::string details(const nlohmann::ordered_json& state) {
   return out;
 }
 
-void draw(const std::map<std::string, Watched>& watched, bool plain, std::chrono::steady_clock::time_point now) {
+void draw(const std::map<std::string, Watched>& watched, bool plain,
+          std::chrono::steady_clock::time_point now) {
   std::string screen;
   if (!plain) screen += "\x1b[H\x1b[2J";
-  screen += fmt::format("{:<34} {:<5} {:>7} {:<16} {}\n", "STATE TOPIC", "FRESH", "T+ [s]", "ECHO ACTION", "STATE / ERRORS");
+  screen += fmt::format("{:<34} {:<5} {:>7} {:<16} {}\n", "STATE TOPIC", "FRESH", "T+ [s]", "ECHO ACTION",
+                        "STATE / ERRORS");
   for (const auto& [topic, w] : watched) {
     if (w.received == 0) {
       screen += fmt::format("{:<34} (discovered, no State yet)\n", topic);
@@ -92,9 +98,11 @@ void draw(const std::map<std::string, Watched>& watched, bool plain, std::chrono
     const std::string fresh = silent ? "SILENT" : (s.value("fresh_msg", false) ? "yes" : "no");
     std::string action = s.contains("echo") ? s["echo"].value("action", "") : "";
     if (action.empty()) action = "-";
-    screen += fmt::format("{:<34} {:<5} {:>7.1f} {:<16} {}\n", topic, fresh, s.value("t_plus", 0.0), action, details(s));
+    screen += fmt::format("{:<34} {:<5} {:>7.1f} {:<16} {}\n", topic, fresh, s.value("t_plus", 0.0), action,
+                          details(s));
     if (s.contains("error_list")) {
-      for (const auto& e : s["error_list"]) screen += fmt::format("{:<34}   ! {}\n", "", e.get<std::string>());
+      for (const auto& e : s["error_list"])
+        screen += fmt::format("{:<34}   ! {}\n", "", e.get<std::string>());
     }
   }
   fmt::print("{}", screen);
@@ -163,7 +171,8 @@ int run_watch(const WatchOptions& options) {
 void add_watch_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<WatchOptions>();
   CLI::App* cmd = app.add_subcommand("watch", "Show every hub State on the domain in one live table");
-  cmd->add_option("--refresh", options->refresh_hz, "Screen refreshes per second")->check(CLI::Range(0.1, 50.0));
+  cmd->add_option("--refresh", options->refresh_hz, "Screen refreshes per second")
+      ->check(CLI::Range(0.1, 50.0));
   cmd->add_option("--duration", options->duration_s, "Stop after this many seconds (default: until Ctrl-C)");
   cmd->add_flag("--plain", options->plain, "Print tables one after another instead of redrawing the screen");
   add_domain_options(*cmd, options->domain);

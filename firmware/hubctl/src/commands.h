@@ -11,5 +11,7 @@ void add_echo_command(CLI::App& app, int& exit_code);
 void add_send_command(CLI::App& app, int& exit_code);
 void add_hz_command(CLI::App& app, int& exit_code);
 void add_watch_command(CLI::App& app, int& exit_code);
+void add_conformance_command(CLI::App& app, int& exit_code);
+void add_play_command(CLI::App& app, int& exit_code);
 
 }  // namespace hubrt::hubctl

@@ -1,5 +1,6 @@
 #include "hubrt/runtime/hub.h"
 
+#include <algorithm>
 #include <ctime>
 
 #include <spdlog/spdlog.h>
@@ -28,7 +29,10 @@ void Hub::add_stage(std::unique_ptr<CycleStage> stage) {
 }
 
 void Hub::add_first_stage(std::unique_ptr<CycleStage> stage) {
-  stages_.insert(stages_.begin(), std::move(stage));
+  // push_back + rotate rather than insert(begin()): GCC 12 at -O2 reports a false "potential null
+  // pointer dereference" inside vector::insert, which -Werror turns into a broken release build.
+  stages_.push_back(std::move(stage));
+  std::rotate(stages_.begin(), stages_.end() - 1, stages_.end());
 }
 void Hub::keep_alive(std::shared_ptr<void> owned) {
   owned_.push_back(std::move(owned));

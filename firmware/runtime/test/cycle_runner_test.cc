@@ -62,10 +62,12 @@ TEST(CycleRunner, RunsCyclesAndCommandStepsUntilStopped) {
     while (counter.publishes < 5 && std::chrono::steady_clock::now() < deadline) {
       std::this_thread::sleep_for(milliseconds(1));
     }
-    const std::uint64_t before = hub.stats().command_steps;
+    // Hub stats belong to the cycle thread, so this thread watches the node's atomic counter:
+    // a few steps after the wake means the runner's loop has come round and served the eventfd.
+    const int before = counter.steps.load();
     counter.take_effect = true;
     waker.wake();
-    while (hub.stats().command_steps == before && std::chrono::steady_clock::now() < deadline) {
+    while (counter.steps.load() < before + 3 && std::chrono::steady_clock::now() < deadline) {
       std::this_thread::sleep_for(milliseconds(1));
     }
     runner->request_stop();

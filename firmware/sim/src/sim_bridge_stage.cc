@@ -2,93 +2,130 @@
 
 #include <fmt/format.h>
 
-namespace hubrt::sim {
+#include "hubrt/sim/sim_world.h"
 
-std::string sim_signals_topic(std::string_view hub) { return fmt::format("/sim/{}/signals", hub); }
+namespace hubrt::sim {
+namespace {
+
+template <class Element, class Sequence>
+void point_sequence(Sequence& sequence, std::vector<Element>& elements) {
+  sequence._buffer = elements.data();
+  sequence._length = static_cast<std::uint32_t>(elements.size());
+  sequence._maximum = sequence._length;
+  sequence._release = false;
+}
+
+}  // namespace
+
+std::string sim_signals_topic(std::string_view hub) {
+  return fmt::format("/sim/{}/signals", hub);
+}
 
 Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Participant& participant,
-                                                                 std::string hub_name, const hal::BoardConfig& board,
+                                                                 std::string hub_name,
+                                                                 const hal::BoardConfig& board,
                                                                  hal::fake::FakeBackend& fake,
                                                                  std::shared_ptr<spdlog::logger> log) {
   auto input_topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, kSimInputTopic);
   if (!input_topic) return std::move(input_topic).error();
-  auto reader = dds::Reader<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic);
-  if (!reader) return std::move(reader).error();
-  auto signals_topic = dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(hub_name));
+  auto input_reader = dds::Reader<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic);
+  if (!input_reader) return std::move(input_reader).error();
+  auto fault_topic = dds::Topic<hub_msgs_msg_dds__SimFault_>::create(participant, kSimFaultTopic);
+  if (!fault_topic) return std::move(fault_topic).error();
+  auto fault_reader = dds::Reader<hub_msgs_msg_dds__SimFault_>::create(participant, *fault_topic);
+  if (!fault_reader) return std::move(fault_reader).error();
+  auto signals_topic =
+      dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(hub_name));
   if (!signals_topic) return std::move(signals_topic).error();
   auto writer = dds::Writer<hub_msgs_msg_dds__SimSignals_>::create(participant, *signals_topic);
   if (!writer) return std::move(writer).error();
-  std::vector<Signal> signals;
-  for (const auto& input : board.inputs) signals.push_back(Signal{input.config.signal, false});
-  for (const auto& output : board.outputs) signals.push_back(Signal{output.config.signal, true});
-  return std::unique_ptr<SimBridgeStage>(new SimBridgeStage(std::move(*input_topic), std::move(*reader),
-                                                            std::move(*signals_topic), std::move(*writer),
-                                                            std::move(hub_name), std::move(signals), fake,
-                                                            std::move(log)));
+  Entities entities{std::move(*input_topic),  std::move(*input_reader),  std::move(*fault_topic),
+                    std::move(*fault_reader), std::move(*signals_topic), std::move(*writer)};
+  return std::unique_ptr<SimBridgeStage>(
+      new SimBridgeStage(std::move(entities), std::move(hub_name), board, fake, std::move(log)));
 }
 
-SimBridgeStage::SimBridgeStage(dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic,
-                               dds::Reader<hub_msgs_msg_dds__SimInput_> reader,
-                               dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic,
-                               dds::Writer<hub_msgs_msg_dds__SimSignals_> writer, std::string hub_name,
-                               std::vector<Signal> signals, hal::fake::FakeBackend& fake,
-                               std::shared_ptr<spdlog::logger> log)
-    : input_topic_(std::move(input_topic)),
-      reader_(std::move(reader)),
-      signals_topic_(std::move(signals_topic)),
-      writer_(std::move(writer)),
+SimBridgeStage::SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,
+                               hal::fake::FakeBackend& fake, std::shared_ptr<spdlog::logger> log)
+    : dds_(std::move(entities)),
       hub_name_(std::move(hub_name)),
-      signals_(std::move(signals)),
+      board_(board),
       fake_(fake),
-      log_(std::move(log)),
-      wire_signals_(signals_.size()) {
+      log_(std::move(log)) {
+  for (const auto& input : board.inputs) signals_.push_back(Signal{input.config.signal, false});
+  for (const auto& output : board.outputs) signals_.push_back(Signal{output.config.signal, true});
+  if (board.simulation) {
+    for (const auto& valve : board.simulation->valves) {
+      if (fake_.valve(valve.output) != nullptr) valves_.push_back(valve.output);
+    }
+    for (const auto& device : board.simulation->modbus) {
+      if (fake_.lift_drive(device.device) != nullptr) lifts_.push_back(device.device);
+    }
+  }
+  wire_signals_.resize(signals_.size());
   for (std::size_t i = 0; i < signals_.size(); ++i) {
     wire_signals_[i].name = signals_[i].name.data();
     wire_signals_[i].output = signals_[i].output;
   }
+  wire_valves_.resize(valves_.size());
+  for (std::size_t i = 0; i < valves_.size(); ++i) wire_valves_[i].name = valves_[i].data();
+  wire_lifts_.resize(lifts_.size());
+  for (std::size_t i = 0; i < lifts_.size(); ++i) wire_lifts_[i].device = lifts_[i].data();
   wire_.hub = hub_name_.data();
-  wire_.signals._buffer = wire_signals_.data();
-  wire_.signals._length = static_cast<std::uint32_t>(wire_signals_.size());
-  wire_.signals._maximum = wire_.signals._length;
-  wire_.signals._release = false;
+  point_sequence(wire_.signals, wire_signals_);
+  point_sequence(wire_.valves, wire_valves_);
+  point_sequence(wire_.lifts, wire_lifts_);
 }
 
 bool SimBridgeStage::apply(std::string_view signal, bool active) noexcept {
-  if (auto* sensor = fake_.dock_sensor(signal); sensor != nullptr) {
-    sensor->set_occupied(active);
-  } else if (auto* input = fake_.input(signal); input != nullptr) {
-    input->set(active);
-  } else if (auto* supply = fake_.pressure_supply(signal); supply != nullptr) {
-    if (active) {
-      supply->restore();
-    } else {
-      supply->drop();
-    }
-  } else {
-    log_->warn("sim: '{}' is not a simulated input or pressure supply of hub '{}'", signal, hub_name_);
+  if (auto applied = apply_input(fake_, signal, active); !applied) {
+    log_->warn("sim: hub '{}': {}", hub_name_, applied.error().message);
     return false;
   }
   log_->info("sim: {} -> {}", signal, active ? "active" : "inactive");
   return true;
 }
 
-void SimBridgeStage::before_nodes(const Instant& /*now*/) noexcept {
+void SimBridgeStage::apply_fault(const hub_msgs_msg_dds__SimFault_& fault, Time now) noexcept {
+  const FaultRequest request{fault.device, fault.fault, fault.value};
+  if (auto applied = sim::apply_fault(fake_, board_, request, now); !applied) {
+    log_->warn("sim: hub '{}': fault refused: {}", hub_name_, applied.error().message);
+    return;
+  }
+  log_->warn("sim: fault injected: {} {} (value {})", request.device, request.fault, request.value);
+}
+
+void SimBridgeStage::before_nodes(const Instant& now) noexcept {
   for (int i = 0; i < 64; ++i) {  // bounded: a flood of sim inputs must not stall the cycle
-    const Result<bool> taken = reader_.take_next(input_);
+    const Result<bool> taken = dds_.input_reader.take_next(input_);
     if (!taken.is_ok() || !taken.value()) break;
     const auto& input = input_.get();
     if (input.hub == nullptr || input.signal == nullptr || hub_name_ != input.hub) continue;
     apply(input.signal, input.active);
   }
+  for (int i = 0; i < 16; ++i) {
+    const Result<bool> taken = dds_.fault_reader.take_next(fault_);
+    if (!taken.is_ok() || !taken.value()) break;
+    const auto& fault = fault_.get();
+    if (fault.hub == nullptr || fault.device == nullptr || fault.fault == nullptr || hub_name_ != fault.hub)
+      continue;
+    apply_fault(fault, now.mono);
+  }
 }
 
-void SimBridgeStage::after_nodes(const Instant& /*now*/, bool publish_all, bool /*took_effect*/) noexcept {
+void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
   if (!publish_all) return;
   for (std::size_t i = 0; i < signals_.size(); ++i) {
     const Result<bool> level = fake_.active(signals_[i].name);
     wire_signals_[i].active = level.is_ok() && level.value();
   }
-  writer_.write(wire_).ignore();  // observation only; a lost sample is replaced next cycle
+  for (std::size_t i = 0; i < valves_.size(); ++i) {
+    wire_valves_[i].energised = fake_.valve(valves_[i])->in_energised_position();
+  }
+  for (std::size_t i = 0; i < lifts_.size(); ++i) {
+    wire_lifts_[i].position_mm = static_cast<float>(fake_.lift_drive(lifts_[i])->position_mm(now.mono));
+  }
+  dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced next cycle
 }
 
 }  // namespace hubrt::sim

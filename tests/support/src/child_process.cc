@@ -1,5 +1,6 @@
 #include "hubrt/test_support/child_process.h"
 
+#include <elf.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -9,11 +10,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -79,6 +84,56 @@ std::vector<char*> as_argv(std::vector<std::string>& strings) {
   return pointers;
 }
 
+// The e_machine field of an ELF file, or nullopt when `path` is not an ELF file (a script, a file
+// that cannot be read). EI_DATA says the byte order; e_machine sits at the same offset in ELF32 and
+// ELF64 headers.
+std::optional<std::uint16_t> elf_machine(const std::string& path) {
+  std::array<unsigned char, EI_NIDENT + 4> header{};
+  std::ifstream in(path, std::ios::binary);
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast): istream reads chars
+  if (!in.read(reinterpret_cast<char*>(header.data()), static_cast<std::streamsize>(header.size()))) {
+    return std::nullopt;
+  }
+  if (header[EI_MAG0] != ELFMAG0 || header[EI_MAG1] != ELFMAG1 || header[EI_MAG2] != ELFMAG2 ||
+      header[EI_MAG3] != ELFMAG3) {
+    return std::nullopt;
+  }
+  const unsigned lo = header[EI_NIDENT + 2];
+  const unsigned hi = header[EI_NIDENT + 3];
+  if (header[EI_DATA] == ELFDATA2MSB) return static_cast<std::uint16_t>((lo << 8U) | hi);
+  return static_cast<std::uint16_t>((hi << 8U) | lo);
+}
+
+// The machine this process's own code is for: under qemu-user /proc/self/exe is the emulated
+// program, not qemu.
+std::optional<std::uint16_t> own_machine() {
+  static const std::optional<std::uint16_t> machine = elf_machine("/proc/self/exe");
+  return machine;
+}
+
+// HUBRT_TARGET_EMULATOR split into words; empty when unset (native builds).
+std::vector<std::string> target_emulator() {
+  std::vector<std::string> words;
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): tests do not change the environment while spawning
+  const char* value = std::getenv("HUBRT_TARGET_EMULATOR");
+  if (value == nullptr) return words;
+  std::istringstream in(value);
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+// `name` looked up in PATH as execvp would: the first executable match, or empty.
+std::string find_in_path(const std::string& name) {
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): see target_emulator()
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path != nullptr ? path : "/usr/bin:/bin");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
 ExitStatus to_exit_status(int wait_status) {
   ExitStatus status;
   if (WIFEXITED(wait_status)) status.exit_code = WEXITSTATUS(wait_status);
@@ -97,6 +152,12 @@ std::string ExitStatus::describe() const {
 
 Expected<ChildProcess> ChildProcess::start(const std::string& program, const std::vector<std::string>& args,
                                            const Environment& extra_env) {
+  // qemu-user runs posix_spawn's vfork as a plain fork, so an exec that fails in the child looks
+  // like a successful start: check what can be checked before spawning.
+  const bool search_path = program.find('/') == std::string::npos;
+  if (!search_path && ::access(program.c_str(), X_OK) != 0) {
+    return make_error(ErrorCode::kIo, "start '" + program + "': " + errno_text(errno));
+  }
   std::error_code ec;
   std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
   if (ec) tmp = "/tmp";
@@ -109,8 +170,21 @@ Expected<ChildProcess> ChildProcess::start(const std::string& program, const std
   const std::string out_path = dir + "/stdout";
   const std::string err_path = dir + "/stderr";
 
-  std::vector<std::string> argv_strings;
-  argv_strings.push_back(program);
+  // Without binfmt_misc a program under qemu-user cannot exec a program for its own machine by
+  // itself: such programs run as "<emulator words> program args". Host programs (/bin/sh) do not.
+  std::vector<std::string> argv_strings = target_emulator();
+  std::string to_spawn = program;
+  if (!argv_strings.empty()) {
+    const std::string resolved = search_path ? find_in_path(program) : program;
+    const auto machine = resolved.empty() ? std::nullopt : elf_machine(resolved);
+    if (machine && machine == own_machine()) {
+      to_spawn = argv_strings.front();
+      argv_strings.push_back(resolved);
+    } else {
+      argv_strings.clear();
+    }
+  }
+  if (argv_strings.empty()) argv_strings.push_back(program);
   argv_strings.insert(argv_strings.end(), args.begin(), args.end());
   std::vector<char*> argv = as_argv(argv_strings);
   std::vector<std::string> env_strings = child_environment(extra_env);
@@ -134,11 +208,10 @@ Expected<ChildProcess> ChildProcess::start(const std::string& program, const std
   posix_spawnattr_setflags(&setup.attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
 
   pid_t pid = -1;
-  const bool search_path = program.find('/') == std::string::npos;
   const int rc =
-      search_path
-          ? ::posix_spawnp(&pid, program.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data())
-          : ::posix_spawn(&pid, program.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data());
+      to_spawn.find('/') == std::string::npos
+          ? ::posix_spawnp(&pid, to_spawn.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data())
+          : ::posix_spawn(&pid, to_spawn.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data());
   if (rc != 0) {
     std::filesystem::remove_all(dir, ec);
     return make_error(ErrorCode::kIo, "start '" + program + "': " + errno_text(rc));

@@ -1,9 +1,14 @@
 #include "hubrt/test_support/child_process.h"
 
 #include <signal.h>
+#include <stdlib.h>
 
 #include <cerrno>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -96,6 +101,81 @@ TEST(ChildProcess, StartFailureNamesTheProgram) {
   EXPECT_EQ(child.error().code, ErrorCode::kIo);
   EXPECT_NE(child.error().message.find("/nonexistent/hubrt-no-such-program"), std::string::npos)
       << child.error().message;
+}
+
+TEST(ChildProcess, StartFailsForAFileThatIsNotExecutable) {
+  // Under qemu-user a failed exec in the spawned child is not reported by posix_spawn: start()
+  // must see it before spawning.
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("hubrt-not-executable-" + std::to_string(::getpid()));
+  std::ofstream(file) << "#!/bin/sh\necho ran\n";
+  std::filesystem::permissions(file,
+                               std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  auto child = ChildProcess::start(file.string(), {});
+  std::filesystem::remove(file);
+  ASSERT_FALSE(child) << "started " << file << " without execute permission";
+  EXPECT_EQ(child.error().code, ErrorCode::kIo);
+  EXPECT_NE(child.error().message.find(file.string()), std::string::npos) << child.error().message;
+}
+
+TEST(ChildProcess, StartsAProgramForThisMachine) {
+  // This test binary is a program for the machine the tests run on: in a cross build it is a
+  // target program, which only starts through HUBRT_TARGET_EMULATOR.
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  auto child = ChildProcess::start(self, {"--gtest_list_tests", "--gtest_filter=ChildProcess.*"});
+  ASSERT_TRUE(child) << child.error().message;
+  auto status = child->wait(kStartup);
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << child->stderr_text();
+  EXPECT_NE(child->stdout_text().find("StartsAProgramForThisMachine"), std::string::npos)
+      << child->stdout_text();
+}
+
+// Sets HUBRT_TARGET_EMULATOR for one test and puts the previous value back.
+class ScopedEmulator {
+ public:
+  explicit ScopedEmulator(const char* value) {
+    // NOLINTNEXTLINE(concurrency-mt-unsafe): tests run single-threaded here
+    if (const char* old = std::getenv(kName); old != nullptr) previous_ = old;
+    ::setenv(kName, value, 1);
+  }
+  ~ScopedEmulator() {
+    if (previous_) {
+      ::setenv(kName, previous_->c_str(), 1);
+    } else {
+      ::unsetenv(kName);
+    }
+  }
+  ScopedEmulator(const ScopedEmulator&) = delete;
+  ScopedEmulator& operator=(const ScopedEmulator&) = delete;
+
+ private:
+  static constexpr const char* kName = "HUBRT_TARGET_EMULATOR";
+  std::optional<std::string> previous_;
+};
+
+TEST(ChildProcess, PutsTheEmulatorInFrontOfProgramsForThisMachine) {
+  // /bin/echo stands in for qemu: what it prints is the command line the emulator was given.
+  const ScopedEmulator emulator("/bin/echo  emulated -L /sysroot");
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  auto child = ChildProcess::start(self, {"--gtest_list_tests"});
+  ASSERT_TRUE(child) << child.error().message;
+  ASSERT_TRUE(child->wait(kStartup));
+  EXPECT_EQ(child->stdout_text(), "emulated -L /sysroot " + self + " --gtest_list_tests\n");
+}
+
+TEST(ChildProcess, RunsOtherProgramsDirectlyWhenAnEmulatorIsSet) {
+  // A script is no ELF program for this machine: the kernel runs it (through its #! line).
+  const ScopedEmulator emulator("/bin/echo emulated");
+  const std::filesystem::path script =
+      std::filesystem::temp_directory_path() / ("hubrt-host-script-" + std::to_string(::getpid()));
+  std::ofstream(script) << "#!/bin/sh\necho \"direct $1\"\n";
+  std::filesystem::permissions(script, std::filesystem::perms::owner_all);
+  auto child = ChildProcess::start(script.string(), {"arg"});
+  ASSERT_TRUE(child) << child.error().message;
+  ASSERT_TRUE(child->wait(kStartup));
+  std::filesystem::remove(script);
+  EXPECT_EQ(child->stdout_text(), "direct arg\n");
 }
 
 }  // namespace

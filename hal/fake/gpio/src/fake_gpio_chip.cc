@@ -93,7 +93,8 @@ std::vector<LevelChange> FakeGpioChip::history(unsigned index) const {
   const Line& line = lines_[index];
   const std::uint64_t capacity = line.ring.size();
   const std::uint64_t first = line.changes > capacity ? line.changes - capacity : 0;
-  for (std::uint64_t k = first; k < line.changes; ++k) out.push_back(line.ring[static_cast<std::size_t>(k % capacity)]);
+  for (std::uint64_t k = first; k < line.changes; ++k)
+    out.push_back(line.ring[static_cast<std::size_t>(k % capacity)]);
   return out;
 }
 

@@ -13,10 +13,10 @@
 namespace hubrt::hal {
 
 struct CanFrame {
-  std::uint32_t id = 0;   // 11-bit, or 29-bit when extended
+  std::uint32_t id = 0;  // 11-bit, or 29-bit when extended
   bool extended = false;
   bool remote = false;
-  std::uint8_t len = 0;   // 0..8
+  std::uint8_t len = 0;  // 0..8
   std::array<std::uint8_t, 8> data{};
 };
 
@@ -37,15 +37,15 @@ enum class CanBusState : std::uint8_t {
 
 struct CanBusStatus {
   CanBusState state = CanBusState::kErrorActive;
-  std::uint16_t tx_errors = 0;  // transmit error counter, when the backend knows it
-  std::uint16_t rx_errors = 0;  // receive error counter, when the backend knows it
+  std::uint16_t tx_errors = 0;     // transmit error counter, when the backend knows it
+  std::uint16_t rx_errors = 0;     // receive error counter, when the backend knows it
   std::uint32_t error_frames = 0;  // error frames seen since open
   std::uint32_t rx_dropped = 0;    // received frames dropped because the receive queue was full
 };
 
 struct CanConfig {
-  std::string bus;        // logical name used in error messages, e.g. "tool_bus"
-  std::string interface;  // e.g. "can0", "vcan0"
+  std::string bus;                  // logical name used in error messages, e.g. "tool_bus"
+  std::string interface;            // e.g. "can0", "vcan0"
   std::uint32_t bitrate = 500'000;  // documented here; the OS (systemd-networkd) sets it
   std::vector<CanFilter> filters;   // empty = receive everything
 };

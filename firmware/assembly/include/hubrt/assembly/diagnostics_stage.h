@@ -22,13 +22,15 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 8;
+  static constexpr std::size_t kMaxValues = 10;
 
-  // `hub` must already have all its nodes. `interval` between two publications.
+  // `hub` must already have all its nodes. `interval` between two publications. A positive
+  // `command_timeout` is published too (key command_timeout_ms), so that tools such as
+  // `hubctl conformance` learn the watchdog's timeout from the wire.
   // Errors: the DDS topic or writer that could not be created.
   static Expected<std::unique_ptr<DiagnosticsStage>> create(const dds::Participant& participant,
                                                             const runtime::Hub& hub, std::string hardware_id,
-                                                            Duration interval);
+                                                            Duration interval, Duration command_timeout = {});
 
   void before_nodes(const Instant& /*now*/) noexcept override {}
   void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
@@ -46,7 +48,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
 
   DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer, const runtime::Hub& hub,
-                   std::string hardware_id, Duration interval);
+                   std::string hardware_id, Duration interval, Duration command_timeout);
   void fill_hub_status(const Instant& now) noexcept;
   void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
   void set_value(std::size_t status, std::size_t slot, const char* key,
@@ -57,6 +59,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
   const runtime::Hub& hub_;
   std::string hardware_id_;
   Duration interval_;
+  Duration command_timeout_;
   Time next_due_{};
   bool started_ = false;
   Time started_at_{};

@@ -8,6 +8,7 @@
 
 #include <spdlog/logger.h>
 
+#include "hubrt/assembly/subscriptions.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
 #include "hubrt/config/hub_config.h"
@@ -38,13 +39,14 @@ struct AssemblyRequest {
 };
 
 // Destroyed in reverse order of the members: the hub (nodes, their devices and DDS endpoints)
-// goes before the participant, which goes before the backend.
+// goes before the subscriptions, then the participant, then the backend.
 struct AssembledHub {
   hal::BoardConfig board;
   config::HubConfig config;
   std::unique_ptr<hal::Backend> backend;
   hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
   std::optional<dds::Participant> participant;
+  std::unique_ptr<Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
   std::unique_ptr<runtime::Hub> hub;
 };
 

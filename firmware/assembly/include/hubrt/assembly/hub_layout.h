@@ -113,12 +113,17 @@ class HubLevelLogic {
 
   explicit HubLevelLogic(std::vector<std::unique_ptr<Route>>& routes) : routes_(&routes) {}
 
+  // The hub-level node's tracker: fragments go out only in cycles where a hub command arrived.
+  void watch(const runtime::CommandTracker& tracker) noexcept { tracker_ = &tracker; }
+
   bool validate(const Command& /*command*/, runtime::Problem& /*problem*/) const noexcept { return true; }
   void read_inputs(Time /*now*/) noexcept {}
-  // No hub command in force (none yet, or the hub watchdog tripped): nothing is distributed, so
-  // every node's own watchdog trips in turn and drives its safe state.
-  void update(const Command* in_force, Time /*now*/) noexcept {
+  // A fragment is posted when a hub command arrives (new or repeated), not every cycle, so each
+  // node's watchdog is fed exactly when the hub's is and trips in the same cycle: re-posting the
+  // last fragment every cycle would keep a node commanded one timeout longer than its hub.
+  void update(const Command* in_force, Time now) noexcept {
     if (in_force == nullptr) return;
+    if (tracker_ != nullptr && tracker_->since_last_command(now) != Duration::zero()) return;
     for (const auto& route : *routes_) route->distribute(in_force);
   }
   void reset() noexcept {}
@@ -129,6 +134,7 @@ class HubLevelLogic {
 
  private:
   std::vector<std::unique_ptr<Route>>* routes_;
+  const runtime::CommandTracker* tracker_ = nullptr;
 };
 
 // The distributor before the nodes, the collector after them; owns the hub-level DDS entities.
@@ -148,6 +154,7 @@ class HubLayoutStage final : public runtime::CycleStage {
   void start(runtime::NodeOptions options) {
     node_ = std::make_unique<runtime::Node<HubLevelLogic<HubTypes>>>(
         std::move(options), HubLevelLogic<HubTypes>(routes_), source_, sink_, message_ops<HubCommand>());
+    node_->logic().watch(node_->tracker());
   }
   std::vector<std::unique_ptr<Route>>& routes() noexcept { return routes_; }
   [[nodiscard]] const runtime::Node<HubLevelLogic<HubTypes>>& hub_node() const noexcept { return *node_; }

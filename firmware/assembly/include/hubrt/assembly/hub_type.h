@@ -32,6 +32,8 @@ struct HubContext {
   runtime::Waker waker;  // wakes the cycle when a command arrives
   std::shared_ptr<spdlog::logger> log;
   const Clock& clock;  // for opening devices at start; the cycle passes time in afterwards
+  // Other hubs' States, by the names of the hub file's `subscriptions:` (outlive the built hub).
+  Subscriptions& subscriptions;
 };
 
 class HubType {

@@ -1,7 +1,7 @@
 // Connects a hub's fake backend to the outside over DDS, so that a test, the demo or the station
 // model (another process) can change the simulated world and watch the hub's outputs. It runs on
-// the cycle thread (the fake GPIO belongs to it): inputs received are applied before the nodes
-// step; the signals are published after periodic cycles.
+// the cycle thread (the fake GPIO belongs to it): inputs and faults received are applied before
+// the nodes step; the signals are published after periodic cycles.
 #pragma once
 
 #include <memory>
@@ -15,21 +15,25 @@
 #include "hubrt/hal/board/board_config.h"
 #include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/runtime/hub.h"
+
 #include "sim.h"
 
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimInput_, hub_msgs_msg_dds__SimInput__desc);
+HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimFault_, hub_msgs_msg_dds__SimFault__desc);
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimSignals_, hub_msgs_msg_dds__SimSignals__desc);
 
 namespace hubrt::sim {
 
 inline constexpr std::string_view kSimInputTopic = "/sim/input";
+inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
 
 class SimBridgeStage final : public runtime::CycleStage {
  public:
-  // Publishes every input and output signal of `board`. Errors: the DDS entities.
-  static Expected<std::unique_ptr<SimBridgeStage>> create(const dds::Participant& participant, std::string hub_name,
-                                                          const hal::BoardConfig& board,
+  // Publishes every input and output signal of `board`, its valves and its lift drives.
+  // Errors: the DDS entities.
+  static Expected<std::unique_ptr<SimBridgeStage>> create(const dds::Participant& participant,
+                                                          std::string hub_name, const hal::BoardConfig& board,
                                                           hal::fake::FakeBackend& fake,
                                                           std::shared_ptr<spdlog::logger> log);
 
@@ -45,22 +49,31 @@ class SimBridgeStage final : public runtime::CycleStage {
     std::string name;
     bool output = false;
   };
-  SimBridgeStage(dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic,
-                 dds::Reader<hub_msgs_msg_dds__SimInput_> reader,
-                 dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic,
-                 dds::Writer<hub_msgs_msg_dds__SimSignals_> writer, std::string hub_name, std::vector<Signal> signals,
+  struct Entities {
+    dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
+    dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
+    dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
+    dds::Reader<hub_msgs_msg_dds__SimFault_> fault_reader;
+    dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic;
+    dds::Writer<hub_msgs_msg_dds__SimSignals_> signals_writer;
+  };
+  SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,
                  hal::fake::FakeBackend& fake, std::shared_ptr<spdlog::logger> log);
+  void apply_fault(const hub_msgs_msg_dds__SimFault_& fault, Time now) noexcept;
 
-  dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic_;
-  dds::Reader<hub_msgs_msg_dds__SimInput_> reader_;
-  dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic_;
-  dds::Writer<hub_msgs_msg_dds__SimSignals_> writer_;
+  Entities dds_;
   std::string hub_name_;
+  const hal::BoardConfig& board_;
   std::vector<Signal> signals_;
+  std::vector<std::string> valves_;  // output signals of the simulated valves
+  std::vector<std::string> lifts_;   // Modbus devices with a lift drive simulator
   hal::fake::FakeBackend& fake_;
   std::shared_ptr<spdlog::logger> log_;
   dds::Sample<hub_msgs_msg_dds__SimInput_> input_;
+  dds::Sample<hub_msgs_msg_dds__SimFault_> fault_;
   std::vector<hub_msgs_msg_dds__SimSignal_> wire_signals_;
+  std::vector<hub_msgs_msg_dds__SimValve_> wire_valves_;
+  std::vector<hub_msgs_msg_dds__SimLift_> wire_lifts_;
   hub_msgs_msg_dds__SimSignals_ wire_{};
 };
 

@@ -35,8 +35,15 @@ class ChildProcess {
  public:
   // Starts `program` (a path, or a name looked up in PATH if it contains no '/') with `args`
   // (argv[1..]) and the current environment plus `extra_env` (which overrides same-named
-  // variables). Errors: kIo naming the program when the output directory cannot be made or
-  // spawning fails (e.g. no such file).
+  // variables).
+  // Cross builds: when the environment variable HUBRT_TARGET_EMULATOR is set (space-separated
+  // words, e.g. "qemu-aarch64-static -L <sysroot>", which cross-built tests get from CTest) and
+  // `program` is an ELF file for the same machine as this process, it runs as
+  // "<emulator words> <program> args" (qemu-user without binfmt_misc cannot exec it otherwise);
+  // host programs such as /bin/sh and scripts run directly.
+  // Errors: kIo naming the program when a path is not an executable file (checked before
+  // spawning: under qemu-user a failed exec would look like a successful start), the output
+  // directory cannot be made or spawning fails.
   static Expected<ChildProcess> start(const std::string& program, const std::vector<std::string>& args,
                                       const Environment& extra_env = {});
 

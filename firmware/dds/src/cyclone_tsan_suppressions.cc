@@ -15,7 +15,7 @@
 // contains one of these words) is not reported even when our code made the call; ASan still
 // catches the use-after-free variants.
 //
-// Compiled into each test executable (TSan looks the function up in the main program).
+// Compiled into each executable that uses DDS (TSan looks the function up in the main program).
 #if defined(__SANITIZE_THREAD__)
 // NOLINTNEXTLINE(bugprone-reserved-identifier): the name TSan looks for.
 extern "C" const char* __tsan_default_suppressions() {

@@ -1,0 +1,253 @@
+// Micro-benchmarks of the fixed-rate cycle with real DDS in the loop (Google Benchmark):
+//   BM_HubCycle_Repeating   a Dock ECU hub assembled in this process on the fake backend, a planner
+//                           thread repeating one command every 10 ms
+//   BM_HubCycle_Changing    the same, the planner alternating two commands (each takes effect)
+//   BM_RawStateWrite        the baseline: dds_write of the same DockState on the C API, same QoS,
+//                           its instance registered as hubrt's Writer does
+// each with the State's subscriber (the argument) nowhere (0), in this process (1) or in another
+// process (2, hubrt_bench_raw_peer sink: the hub's real situation). Each iteration is paced at
+// 1 kHz (a real hub does not spin) and timed alone (manual time). Counters:
+//   allocs_per_cycle          heap allocations on the cycle's thread, per cycle (the design says 0)
+//   process_allocs_per_cycle  all threads, Cyclone's receive and delivery threads included
+#include <atomic>
+#include <ctime>
+#include <optional>
+#include <thread>
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "hubrt/assembly/hub_assembly.h"
+#include "hubrt/test_support/test_domain.h"
+
+#include "alloc_counter.h"
+#include "bench_common.h"
+#include "dock.h"
+#include "raw_dds.h"
+
+namespace hubrt::bench {
+namespace {
+
+constexpr std::int64_t kPeriodNs = 1'000'000;  // 1 kHz pacing
+constexpr int kWarmupCycles = 300;
+
+void sleep_until(timespec& next) {
+  next.tv_nsec += kPeriodNs;
+  if (next.tv_nsec >= 1'000'000'000) {
+    next.tv_nsec -= 1'000'000'000;
+    ++next.tv_sec;
+  }
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr) == EINTR) {
+  }
+}
+
+// The planner: writes a DockCommand every 10 ms on its own thread.
+class Planner {
+ public:
+  Planner(dds_entity_t participant, bool changing) : changing_(changing) {
+    auto writer = raw_writer(participant, hub_msgs_msg_dds__DockCommand__desc, "rt/dock/command");
+    if (writer) writer_ = *writer;
+    thread_ = std::thread([this] { run(); });
+  }
+  ~Planner() {
+    stop_ = true;
+    thread_.join();
+  }
+  Planner(const Planner&) = delete;
+  Planner& operator=(const Planner&) = delete;
+
+ private:
+  void run() {
+    hub_msgs_msg_dds__DockCommand_ command{};
+    command.target_type = const_cast<char*>("dock");  // NOLINT: wire type wants char*
+    command.target_name = const_cast<char*>("dock");  // NOLINT
+    for (int i = 0; !stop_; ++i) {
+      command.action = const_cast<char*>(changing_ && i % 2 == 1 ? "reset" : "monitor");  // NOLINT
+      dds_write(writer_, &command);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  bool changing_;
+  dds_entity_t writer_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// Where the State goes: nowhere, to a reader in this process, or to a reader in another process.
+class Subscriber {
+ public:
+  enum Kind : std::int64_t { kNone = 0, kInProcess = 1, kOtherProcess = 2 };
+  static const char* label(std::int64_t kind) {
+    if (kind == kNone) return "no subscriber";
+    return kind == kInProcess ? "subscriber in this process" : "subscriber in another process";
+  }
+
+  Subscriber() = default;
+  Subscriber(const Subscriber&) = delete;
+  Subscriber& operator=(const Subscriber&) = delete;
+  ~Subscriber() {
+    draining_ = false;
+    if (thread_.joinable()) thread_.join();
+    if (process_) stop(*process_);
+  }
+
+  // Returns what went wrong, or nothing.
+  std::string start(std::int64_t kind, dds_entity_t participant, const test_support::TestDomain& domain,
+                    const std::string& topic) {
+    if (kind == kInProcess) {
+      auto reader = raw_reader(participant, hub_msgs_msg_dds__DockState__desc, topic);
+      if (!reader) return reader.error().message;
+      reader_ = *reader;
+      thread_ = std::thread([this] {
+        void* samples[16] = {};
+        dds_sample_info_t infos[16];
+        while (draining_) {
+          const dds_return_t n = dds_take(reader_, samples, infos, 16, 16);
+          if (n > 0) dds_return_loan(reader_, samples, n);
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+      });
+    } else if (kind == kOtherProcess) {
+      auto child =
+          test_support::ChildProcess::start(HUBRT_RAW_PEER_PATH, {"sink", "--topic", topic}, domain.env());
+      if (!child) return child.error().message;
+      if (!child->wait_for_output("raw sink matched", std::chrono::seconds(20)))
+        return "the subscriber process never matched: " + child->stderr_text();
+      process_.emplace(std::move(*child));
+    }
+    return {};
+  }
+
+ private:
+  dds_entity_t reader_ = 0;
+  std::atomic<bool> draining_{true};
+  std::thread thread_;
+  std::optional<test_support::ChildProcess> process_;
+};
+
+// Runs `step` once per iteration at 1 kHz and sets the counters.
+template <class Step>
+void paced(benchmark::State& state, Step&& step) {
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  for (int i = 0; i < kWarmupCycles; ++i) {
+    step();
+    sleep_until(next);
+  }
+  std::uint64_t thread_allocs = 0;
+  const std::uint64_t process_before = process_allocations();
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    const std::uint64_t before = thread_allocations();
+    const auto start = std::chrono::steady_clock::now();
+    step();
+    const auto end = std::chrono::steady_clock::now();
+    thread_allocs += thread_allocations() - before;
+    state.SetIterationTime(std::chrono::duration<double>(end - start).count());
+    ++steps;
+    sleep_until(next);
+  }
+  const auto n = static_cast<double>(steps);
+  state.counters["allocs_per_cycle"] = static_cast<double>(thread_allocs) / n;
+  state.counters["process_allocs_per_cycle"] =
+      static_cast<double>(process_allocations() - process_before) / n;
+}
+
+void hub_cycle(benchmark::State& state, bool changing) {
+  auto domain = test_support::TestDomain::acquire();
+  if (!domain) return state.SkipWithError(domain.error().message.c_str());
+  SystemClock clock;
+  assembly::AssemblyRequest request;
+  request.board_file = std::string(HUBRT_SOURCE_DIR) + "/boards/host-sim.yaml";
+  request.hub_file = std::string(HUBRT_SOURCE_DIR) + "/hubs/dock_ecu/dock_ecu.yaml";
+  request.backend = assembly::BackendKind::kFake;
+  request.domain = domain->config();
+  request.rate_hz = 1000;
+  auto assembled = assembly::assemble_hub(request, clock);
+  if (!assembled) return state.SkipWithError(assembled.error().message.c_str());
+  runtime::Hub& hub = *(*assembled)->hub;
+  // The planner (and the in-process subscriber): a second participant in this process.
+  auto participant = raw_participant(domain->domain_id());
+  if (!participant) return state.SkipWithError(participant.error().message.c_str());
+  {
+    Subscriber subscriber;
+    const std::string error =
+        subscriber.start(state.range(0), *participant, *domain, "rt/dock_ecu/dock/state");
+    if (!error.empty()) return state.SkipWithError(error.c_str());
+    state.SetLabel(Subscriber::label(state.range(0)));
+    Planner planner(*participant, changing);
+    paced(state, [&] { hub.cycle(clock.now()); });
+    state.counters["states_published"] = static_cast<double>(hub.nodes().front()->published());
+  }
+  dds_delete(*participant);
+}
+
+void BM_HubCycle_Repeating(benchmark::State& state) {
+  hub_cycle(state, false);
+}
+void BM_HubCycle_Changing(benchmark::State& state) {
+  hub_cycle(state, true);
+}
+
+void BM_RawStateWrite(benchmark::State& state) {
+  auto domain = test_support::TestDomain::acquire();
+  if (!domain) return state.SkipWithError(domain.error().message.c_str());
+  const auto config = domain->config();
+  const dds_entity_t cyclone_domain = dds_create_domain(config.domain_id, config.cyclone_xml.c_str());
+  auto writer_participant = raw_participant(config.domain_id);
+  auto reader_participant = raw_participant(config.domain_id);
+  if (!writer_participant || !reader_participant) return state.SkipWithError("cannot create participants");
+  auto writer = raw_writer(*writer_participant, hub_msgs_msg_dds__DockState__desc, "rt/bench/state");
+  if (!writer) return state.SkipWithError(writer.error().message.c_str());
+  {
+    Subscriber subscriber;
+    const std::string error =
+        subscriber.start(state.range(0), *reader_participant, *domain, "rt/bench/state");
+    if (!error.empty()) return state.SkipWithError(error.c_str());
+    if (state.range(0) != Subscriber::kNone && !wait_for_readers(*writer, 1, 10))
+      return state.SkipWithError("no matched reader");
+    state.SetLabel(Subscriber::label(state.range(0)));
+    std::array<hub_msgs_msg_dds__DockSlot_, 4> slots{};
+    for (auto& slot : slots) slot.name = const_cast<char*>("smart_tool");  // NOLINT: wire type wants char*
+    hub_msgs_msg_dds__DockState_ sample{};
+    sample.name = const_cast<char*>("dock");                                        // NOLINT
+    sample.echo.target_type = sample.echo.target_name = const_cast<char*>("dock");  // NOLINT
+    sample.echo.action = const_cast<char*>("monitor");                              // NOLINT
+    sample.slots._buffer = slots.data();
+    sample.slots._length = sample.slots._maximum = 4;
+    // As hubrt's Writer does: the keyless topic's one instance registered up front, so that Cyclone
+    // does not create and collect it on every write.
+    dds_instance_handle_t instance = 0;
+    dds_register_instance(*writer, &instance, &sample);
+    paced(state, [&] {
+      sample.header.seq++;
+      dds_write(*writer, &sample);
+    });
+  }
+  dds_delete(*writer_participant);
+  dds_delete(*reader_participant);
+  dds_delete(cyclone_domain);
+}
+
+constexpr std::int64_t kIterations = 5000;  // 5 s at 1 kHz
+
+BENCHMARK(BM_RawStateWrite)
+    ->DenseRange(0, 2)
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HubCycle_Repeating)
+    ->DenseRange(0, 2)
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HubCycle_Changing)
+    ->DenseRange(0, 2)
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace hubrt::bench
+
+BENCHMARK_MAIN();

@@ -1,0 +1,441 @@
+#!/usr/bin/env python3
+"""Writes docs/benchmarks.md and the jitter picture from the results of bench/run.
+
+Every figure is set against DESIGN.md section 8; a figure that misses its aim says so, with what
+this run shows about why.
+"""
+import argparse
+import csv
+import json
+import os
+import sys
+from collections import defaultdict
+
+# DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
+ROS1_P50_MS = 0.34
+ROS1_P99_MS = 0.43
+ROS1_RSS_MB = 11.3
+ROS1_FIRST_STATE_MS = 280
+# "No worse than" is judged with this much room for run-to-run noise.
+NOISE = 1.10
+
+
+def load(results, name):
+    path = os.path.join(results, name)
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f)
+
+
+def machine(results):
+    info = {}
+    path = os.path.join(results, "machine.txt")
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                key, _, value = line.partition(": ")
+                info[key.strip()] = value.strip()
+    return info
+
+
+def verdict(ok):
+    return "**meets**" if ok else "**misses**"
+
+
+def ms(value, digits=3):
+    return f"{value:.{digits}f} ms"
+
+
+class Report:
+    def __init__(self):
+        self.summary = []  # (aim, measured, verdict)
+        self.sections = []
+        self.shortfalls = []
+
+    def aim(self, aim, measured, ok, why_not=None):
+        self.summary.append((aim, measured, verdict(ok)))
+        if not ok and why_not:
+            self.shortfalls.append(f"- **{aim}** — {why_not}")
+
+
+SUBSCRIBERS = {"0": "no subscriber", "1": "subscriber in this process", "2": "subscriber in another process"}
+
+
+def cycle_section(report, cycle):
+    if cycle is None:
+        report.sections.append("## Heap allocations per cycle\n\nNot measured in this run.\n")
+        report.aim("0 heap allocations per steady-state cycle", "not measured", False, "the cycle benchmark did not run.")
+        return
+    rows = {}
+    for b in cycle["benchmarks"]:
+        parts = b["name"].split("/")
+        rows[(parts[0], parts[1])] = b
+    lines = [
+        "## Heap allocations and cost per cycle",
+        "",
+        "`hubrt_bench_cycle` (Google Benchmark): a Dock ECU hub assembled in-process on the fake backend, a "
+        "planner thread commanding it every 10 ms, one `hub.cycle()` per millisecond; side by side, one raw "
+        "`dds_write` of the same DockState per millisecond (its instance registered, as hubrt's writer does). "
+        "Each with the State's subscriber nowhere, in the same process, or in another process (the hub's real "
+        "situation). Allocations are counted by interposing `malloc`: on the cycle's thread, and in the whole "
+        "process (Cyclone's receive and delivery threads included). A simulated Dock ECU writes two samples "
+        "per cycle: its node State and the fake backend's SimSignals (the simulation bridge; a hub on a real "
+        "board has no bridge), plus /diagnostics once a second.",
+        "",
+        "| benchmark | subscriber | time per cycle / write | allocations per cycle (cycle thread) | "
+        "allocations per cycle (all threads) |",
+        "|---|---|---|---|---|",
+    ]
+    labels = (("BM_RawStateWrite", "raw `dds_write` of a DockState (baseline)"),
+              ("BM_HubCycle_Repeating", "hub cycle, planner repeating one command"),
+              ("BM_HubCycle_Changing", "hub cycle, planner alternating two commands"))
+    for name, label in labels:
+        for kind, where in SUBSCRIBERS.items():
+            b = rows.get((name, kind))
+            if b is None:
+                continue
+            lines.append(f"| {label} | {where} | {b['real_time']:.2f} {b['time_unit']} | {b['allocs_per_cycle']:.3f} | "
+                         f"{b['process_allocs_per_cycle']:.3f} |")
+    raw = rows.get(("BM_RawStateWrite", "2"))
+    hub = rows.get(("BM_HubCycle_Repeating", "2"))
+    changing = rows.get(("BM_HubCycle_Changing", "2"))
+    if raw and hub:
+        lines += ["", f"With the subscriber in another process a hub cycle costs {hub['real_time'] / raw['real_time']:.2f}x "
+                      "a raw write (it also takes commands, reads the inputs, runs the node, rebuilds the State and "
+                      "writes the simulation bridge's sample)."]
+    report.sections.append("\n".join(lines) + "\n")
+    measured = [b for b in (hub, changing) if b]
+    if not measured:
+        report.aim("0 heap allocations per steady-state cycle", "not measured", False, "the hub benchmarks failed.")
+        return
+    worst = max(b["allocs_per_cycle"] for b in measured)
+    per_write = raw["allocs_per_cycle"] if raw else float("nan")
+    own = worst - 2 * per_write
+    report.aim("0 heap allocations per steady-state cycle",
+               f"{worst:.2f} per cycle on the cycle thread, all in Cyclone's `dds_write` (raw write of the same "
+               f"sample: {per_write:.2f}; the hub writes 2 per cycle: {max(own, 0):.2f} left for the hub's own code)",
+               worst == 0,
+               f"the cycle thread allocates {worst:.2f} times per cycle, and a raw `dds_write` of the same DockState "
+               f"allocates {per_write:.2f} times by itself, with or without a subscriber: Cyclone 0.10 allocates a "
+               "buffer per write of a sample with strings and sequences (traced with gdb on this machine: every "
+               "allocation on the cycle thread was a 256-byte block under `dds_write`). The hub writes two samples "
+               "per cycle in simulation (State and SimSignals), so what is left to the hub's own code is "
+               f"{max(own, 0):.2f}; the runtime's own test (firmware/runtime steady_cycle_alloc_test, DDS replaced by "
+               "fakes) counts 0. Reaching 0 with DDS in the loop needs a write path that does not allocate (a "
+               "pre-serialised sample with `dds_writecdr`, or loaned samples on a shared-memory transport), which "
+               "the DDS layer does not have yet.")
+
+
+def echo_section(report, echo):
+    if echo is None:
+        report.aim("command -> echo p50 <= 2 x raw Cyclone round trip", "not measured", False, "did not run.")
+        return
+    raw, hub = echo["raw_ms"], echo["hub_ms"]
+    lines = [
+        "## Command -> echo latency",
+        "",
+        f"`hubrt_bench_echo_latency`: payload {echo['payload']}; QoS {echo['qos']}. The hub (hubd, "
+        f"{echo['hub_rate_hz']:g} Hz) and a raw C API pong process answer the same planner (C API, waitset), "
+        "in alternating blocks. Each command differs from the one before, so it takes effect and the hub "
+        "publishes its State at once.",
+        "",
+        "| | n | p50 | p90 | p99 | max | lost |",
+        "|---|---|---|---|---|---|---|",
+        f"| raw Cyclone ping-pong | {raw['n']} | {ms(raw['p50'])} | {ms(raw['p90'])} | {ms(raw['p99'])} | "
+        f"{ms(raw['max'])} | {echo['raw_lost']} |",
+        f"| hub | {hub['n']} | {ms(hub['p50'])} | {ms(hub['p90'])} | {ms(hub['p99'])} | {ms(hub['max'])} | "
+        f"{echo['hub_lost']} |",
+        f"| ratio hub / raw | | {echo['ratio_p50']:.2f}x | | {echo['ratio_p99']:.2f}x | | |",
+        "",
+        f"DESIGN.md section 8 reference (ROS 1 roscpp ECU): p50 {ROS1_P50_MS} ms, p99 {ROS1_P99_MS} ms; a quarter "
+        f"of it is p50 {ROS1_P50_MS / 4:.3f} ms, p99 {ROS1_P99_MS / 4:.4f} ms. The section's raw round trip of "
+        f"about 9 us was ddsperf free-running with 12-byte samples; this run's raw figure is the same "
+        "measurement with this payload and this planner.",
+    ]
+    report.sections.append("\n".join(lines) + "\n")
+    ratio = echo["ratio_p50"]
+    report.aim("command -> echo p50 <= 2 x raw Cyclone round trip of the same payload",
+               f"hub {ms(hub['p50'])} vs raw {ms(raw['p50'])} = {ratio:.2f}x", ratio <= 2.0,
+               f"the hub's p50 is {ratio:.2f}x the raw ping-pong's. Both pay the same transport; the difference is "
+               "what the hub does per command: wake the cycle thread through an eventfd (a second thread "
+               "hand-off after Cyclone's receive thread), take and validate the command, copy it into the echo, "
+               "rebuild and serialise the larger State.")
+    quarter_p50, quarter_p99 = ROS1_P50_MS / 4, ROS1_P99_MS / 4
+    ok = hub["p50"] <= quarter_p50 and hub["p99"] <= quarter_p99
+    report.aim("command -> echo p50 and p99 <= 1/4 of ROS 1 (0.085 / 0.1075 ms)",
+               f"p50 {ms(hub['p50'])}, p99 {ms(hub['p99'])}", ok,
+               f"p50 {ms(hub['p50'])} against {quarter_p50:.3f} ms and p99 {ms(hub['p99'])} against "
+               f"{quarter_p99:.4f} ms. The raw ping-pong itself measures p50 {ms(raw['p50'])}, p99 "
+               f"{ms(raw['p99'])} on this machine in this run, so "
+               + ("even raw Cyclone misses the quarter-of-ROS-1 aim here: the aim assumed the 9 us free-running "
+                  "figure, while a waitset-woken planner and a loaded 2-core host pay two scheduler wake-ups per "
+                  "round trip." if raw["p99"] > quarter_p99 or raw["p50"] > quarter_p50 else
+                  "the hub's own overhead (see the 2x aim) is what exceeds it."))
+
+
+def heartbeat_section(report, heartbeat):
+    if heartbeat is None:
+        report.aim("heartbeat jitter no worse than a bare clock_nanosleep loop", "not measured", False, "did not run.")
+        return
+    lines = [
+        "## Heartbeat: period jitter, drift, CPU and memory",
+        "",
+        "`hubrt_bench_heartbeat`: hubd (Dock ECU, fake backend) and a bare `clock_nanosleep` loop on absolute "
+        "deadlines that writes the same DockState with the C API (`hubrt_bench_raw_peer heartbeat`) run at the "
+        "same time, at the same rate. Each stamps its State with its wake-up time. Jitter is "
+        "|period - nominal| between consecutive stamps (the loop's own wake-ups) and between consecutive "
+        "arrivals at a subscriber (what a planner sees). Drift: the slope of the stamps' offset from the "
+        "publisher's deadline grid (t0 + k x period); missed periods: grid periods without a State (a late "
+        "hub skips them, counting overruns; the bare loop catches up in a burst); seq gaps: States published "
+        "but not received. CPU from /proc/<pid>/stat over the window, RSS from "
+        "/proc/<pid>/status at its end. Picture: [benchmarks-jitter.svg](benchmarks-jitter.svg).",
+        "",
+        "| rate | source | States / expected | stamp jitter p50 / p99 / max | arrival jitter p50 / p99 / max | "
+        "drift | missed periods | seq gaps | CPU (% of a core) | RSS | threads |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for entry in heartbeat["rates"]:
+        for source, label in (("raw", "bare loop + dds_write"), ("hub", "hub")):
+            s = entry[source]
+            sj, aj = s["stamp_jitter_ms"], s["arrival_jitter_ms"]
+            lines.append(
+                f"| {entry['rate_hz']:g} Hz | {label} | {s['states']} / {s['expected_states']} | "
+                f"{sj['p50']:.3f} / {sj['p99']:.3f} / {sj['max']:.3f} ms | "
+                f"{aj['p50']:.3f} / {aj['p99']:.3f} / {aj['max']:.3f} ms | {s.get('drift_ppm', 0):.1f} ppm | "
+                f"{s.get('missed_periods', 0):.0f} | {s.get('seq_gaps', 0):.0f} | {s['cpu_pct']:.2f} % | "
+                f"{s['rss_mb']:.1f} MB | {s['threads']} |")
+        lines.append(
+            f"| {entry['rate_hz']:g} Hz | ratio hub / bare | | p99 {entry['ratio_stamp_p99']:.2f}x, max "
+            f"{entry['ratio_stamp_max']:.2f}x | p99 {entry['ratio_arrival_p99']:.2f}x | | | | "
+            f"{entry['ratio_cpu']:.2f}x | {entry['ratio_rss']:.2f}x | |")
+    report.sections.append("\n".join(lines) + "\n")
+
+    for entry in heartbeat["rates"]:
+        rate = entry["rate_hz"]
+        hub, raw = entry["hub"], entry["raw"]
+        ratio = entry["ratio_stamp_p99"]
+        report.aim(f"heartbeat jitter at {rate:g} Hz no worse than a bare clock_nanosleep loop",
+                   f"stamp p99 hub {hub['stamp_jitter_ms']['p99']:.3f} ms vs bare {raw['stamp_jitter_ms']['p99']:.3f}"
+                   f" ms = {ratio:.2f}x (arrival p99 {entry['ratio_arrival_p99']:.2f}x)",
+                   ratio <= NOISE,
+                   f"at {rate:g} Hz the hub's p99 wake-up jitter is {ratio:.2f}x the bare loop's (judged with "
+                   f"{NOISE:.2f}x for noise). Both run on CLOCK_MONOTONIC absolute deadlines (timerfd vs "
+                   "clock_nanosleep); the hub's cycle thread also wakes for commands and shares the core with "
+                   "Cyclone's threads and the diagnostics publication, so on a loaded 2-core machine it is "
+                   "preempted more often. The stamp is taken after the wake-up in both.")
+    drift_ok = all(abs(e["hub"].get("drift_ppm", 1e9)) <= 50 for e in heartbeat["rates"])
+    report.aim("zero drift (deadlines do not slide)",
+               ", ".join(f"{e['rate_hz']:g} Hz: {e['hub'].get('drift_ppm', 0):.1f} ppm "
+                         f"(bare loop {e['raw'].get('drift_ppm', 0):.1f} ppm)" for e in heartbeat["rates"]),
+               drift_ok,
+               "the hub's wake-ups slide against its own deadline grid by more than 50 ppm (the noise of this "
+               "measurement is a few ppm): its timer would not be on absolute deadlines.")
+    complete = all(e["hub"].get("missed_periods", 1) == 0 and e["hub"].get("seq_gaps", 1) == 0
+                   for e in heartbeat["rates"])
+    report.aim("N States in N periods",
+               ", ".join(f"{e['rate_hz']:g} Hz: {e['hub']['states']} of {e['hub']['expected_states']}, "
+                         f"{e['hub'].get('missed_periods', 0):.0f} periods missed, "
+                         f"{e['hub'].get('seq_gaps', 0):.0f} lost (bare loop: {e['raw'].get('missed_periods', 0):.0f}"
+                         " missed)" for e in heartbeat["rates"]),
+               complete,
+               "the hub skipped periods: when a cycle runs later than a whole period (the process was not "
+               "scheduled in time on this loaded 2-core machine) the runner counts an overrun and goes on with "
+               "the next deadline instead of publishing the missed States in a burst, as designed (DESIGN.md "
+               "section 4: overruns counted and reported). The bare loop catches up instead: clock_nanosleep on a "
+               "past deadline returns at once. No State was lost on the wire (seq gaps).")
+    at100 = next((e for e in heartbeat["rates"] if e["rate_hz"] == 100), None)
+    if at100:
+        cpu, rss = at100["hub"]["cpu_pct"], at100["hub"]["rss_mb"]
+        raw_cpu, raw_rss = at100["raw"]["cpu_pct"], at100["raw"]["rss_mb"]
+        report.aim("<= 0.8 % of one core per hub at 100 Hz (x86)",
+                   f"{cpu:.2f} % (bare loop + dds_write: {raw_cpu:.2f} %)", cpu <= 0.8,
+                   f"{cpu:.2f} % of a core, against {raw_cpu:.2f} % for the bare loop writing the same State. "
+                   "Beyond the write the hub takes commands, reads the (simulated) inputs, rebuilds the State, "
+                   "publishes /diagnostics at 1 Hz and runs the simulation bridge of the fake backend; "
+                   f"/proc counts CPU time in 10 ms ticks, so over this {at100['window_s']:g} s window a figure is "
+                   f"+-{1.0 / at100['window_s']:.2f} %.")
+        report.aim("<= 9 MB RSS per hub at 100 Hz", f"{rss:.1f} MB (bare Cyclone writer: {raw_rss:.1f} MB)",
+                   rss <= 9.0,
+                   f"{rss:.1f} MB, of which a bare Cyclone participant with one writer already takes {raw_rss:.1f} MB "
+                   "here (ENVIRONMENT.md: about 7.5 MB per participant). The rest is the hub's libraries "
+                   "(spdlog, yaml-cpp, libmodbus, libgpiod, the C++ runtime), its per-node buffers and its extra "
+                   "DDS readers and writers (commands, diagnostics, the simulation bridge).")
+
+
+def startup_section(report, startup):
+    if startup is None:
+        report.aim("first State within 50 ms of start", "not measured", False, "did not run.")
+        return
+    lines = [
+        "## Start -> first State",
+        "",
+        "`hubrt_bench_startup`: a subscriber waits on the State topic; then hubd (Dock ECU) or a raw C API writer "
+        "at the same rate is spawned, and the time to the first State arriving is taken. Both include process "
+        "start, Cyclone start-up and discovery in both directions; the hub also loads and checks its board and "
+        "hub files and builds its nodes. States written before discovery completes reach nobody (volatile "
+        "durability): the first State received is the first one written after it, so at the shipped 10 Hz the "
+        "figure rounds up to a 100 ms period, while at 1 kHz it shows when the writer became reachable. Runs "
+        "alternate hub and raw.",
+        "",
+        "| rate | | runs | p50 | min | max | first State received was seq 1 |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for entry in startup["rates"]:
+        for source, label in (("raw", "raw Cyclone writer"), ("hub", "hubd")):
+            d = entry[source]
+            f = d["first_state_ms"]
+            lines.append(f"| {entry['rate_hz']:g} Hz | {label} | {f['n']} | {ms(f['p50'], 1)} | {ms(f['min'], 1)} | "
+                         f"{ms(f['max'], 1)} | {d['runs_that_got_seq_1']} of {f['n']} |")
+        lines.append(f"| {entry['rate_hz']:g} Hz | ratio hub / raw | | {entry['ratio_p50']:.2f}x | | | |")
+    lines += ["", f"DESIGN.md section 8 reference: ROS 1 roscpp {ROS1_FIRST_STATE_MS} ms from launch to first state."]
+    report.sections.append("\n".join(lines) + "\n")
+    for entry in startup["rates"]:
+        h, r = entry["hub"]["first_state_ms"], entry["raw"]["first_state_ms"]
+        rate = entry["rate_hz"]
+        why = (f"at {rate:g} Hz the p50 is {ms(h['p50'], 1)} from spawn to the first State at a waiting subscriber; "
+               f"a raw Cyclone program writing at the same rate needs {ms(r['p50'], 1)} for the same (process "
+               f"start, DDS start-up, discovery), so {max(h['p50'] - r['p50'], 0):.1f} ms is the hub's own start-up "
+               "(loading and validating YAML, building the fake backend and the nodes, more DDS entities to "
+               "discover).")
+        if rate * 0.05 < 1:
+            why += (f" At {rate:g} Hz a period is {1000 / rate:g} ms: the States written while discovery was under "
+                    "way are lost to the subscriber and the first one it gets comes a period later; the raw writer "
+                    "pays the same, which is why both land near a multiple of the period.")
+        report.aim(f"first State within 50 ms of start ({rate:g} Hz)",
+                   f"p50 {ms(h['p50'], 1)}, max {ms(h['max'], 1)} (raw writer p50 {ms(r['p50'], 1)})",
+                   h["p50"] <= 50, why)
+
+
+def scale_section(report, scale):
+    if scale is None or not scale.get("sizes"):
+        report.aim("32 hubs on one host all conforming", "not measured", False, "the scale run did not complete.")
+        return
+    lines = [
+        "## Many hubs on one host",
+        "",
+        "`hubrt_bench_scale`: N Dock ECU hubs, each with its own name and ROS namespace, at "
+        f"{scale['sizes'][0]['rate_hz']:g} Hz. Discovery: from spawning the first to a waiting subscriber "
+        "having matched every State writer (and having received a State from each). CPU and RSS over a "
+        "window, all hubs. Conformance: `hubctl conformance --parallel` against all of them at once with the "
+        "default thresholds (short phases). The loopback configuration's MaxAutoParticipantIndex of 32 allows "
+        f"33 participants per host; N hubs + this program + hubctl need more, so this run uses "
+        f"{scale['max_auto_participant_index']}.",
+        "",
+        "| hubs | discovery | all heard | CPU total | CPU per hub | RSS per hub | conforming | failed checks |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for s in scale["sizes"]:
+        failed = ", ".join(f"{k} x{v}" for k, v in sorted(s["failed_checks"].items())) or "none"
+        lines.append(f"| {s['hubs']} | {ms(s['discovery_ms'], 0)} | {ms(s['all_heard_ms'], 0)} | "
+                     f"{s['cpu_total_pct']:.1f} % | {s['cpu_per_hub_pct']:.2f} % | {s['rss_per_hub_mb']:.1f} MB | "
+                     f"{s['conforming']}/{s['hubs']} | {failed} |")
+    report.sections.append("\n".join(lines) + "\n")
+    largest = scale["sizes"][-1]
+    ok = largest["hubs"] >= 32 and largest["conforming"] == largest["hubs"]
+    failed = ", ".join(f"{k} x{v}" for k, v in sorted(largest["failed_checks"].items())) or "none"
+    report.aim("32 hubs on one host all conforming", f"{largest['conforming']}/{largest['hubs']} at "
+               f"{largest['hubs']} hubs", ok,
+               f"with {largest['hubs']} hubs {largest['conforming']} passed; failed checks: {failed}. 32 hub "
+               "processes, the suite's 32 parallel sessions and every other job share 2 cores: the checks "
+               "that fail are the timing bounds written for an unloaded host (jitter, echo latency), while the "
+               "behaviour checks (fresh_msg, t_plus, watchdog, no stale re-apply, reset, sequence) are what to "
+               "look at for correctness." if largest["hubs"] >= 32 else "the 32-hub size did not run.")
+
+
+def picture(results, path):
+    periods = os.path.join(results, "periods.csv")
+    if not os.path.exists(periods):
+        return False
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("report.py: python3-matplotlib missing (toolchain/install-deps --bench): no picture", file=sys.stderr)
+        return False
+    series = defaultdict(list)
+    with open(periods) as f:
+        for row in csv.DictReader(f):
+            series[(float(row["rate_hz"]), row["source"], row["series"])].append(float(row["period_ms"]))
+    rates = sorted({key[0] for key in series})
+    fig, axes = plt.subplots(1, len(rates), figsize=(6 * len(rates), 4.2), squeeze=False)
+    styles = {("raw", "stamp"): ("bare loop, wake-up", "tab:gray", "-"),
+              ("hub", "stamp"): ("hub, cycle stamp", "tab:blue", "-"),
+              ("raw", "arrival"): ("bare loop, arrival", "tab:gray", ":"),
+              ("hub", "arrival"): ("hub, arrival", "tab:orange", "-")}
+    for ax, rate in zip(axes[0], rates):
+        nominal = 1000.0 / rate
+        # Exceedance: the share of periods whose |period - nominal| is larger than x. The p50 is where a
+        # line crosses 0.5, the p99 where it crosses 0.01; further right and lower is worse jitter.
+        for (source, kind), (label, color, style) in styles.items():
+            values = sorted(max(abs(v - nominal), 1e-4) for v in series.get((rate, source, kind), []))
+            if not values:
+                continue
+            n = len(values)
+            ax.step(values, [1.0 - i / n for i in range(n)], where="post", color=color, linestyle=style, label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylim(bottom=0.5 / max(1, max(len(v) for v in series.values())))
+        ax.axhline(0.01, color="lightgray", linewidth=0.8)
+        ax.axhline(0.5, color="lightgray", linewidth=0.8)
+        ax.set_title(f"{rate:g} Hz (period {nominal:g} ms)")
+        ax.set_xlabel("|period - nominal| [ms]")
+        ax.set_ylabel("share of periods exceeding it")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, format="svg")
+    return True
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--results", required=True)
+    parser.add_argument("--markdown", required=True)
+    parser.add_argument("--picture", required=True)
+    args = parser.parse_args()
+
+    report = Report()
+    cycle_section(report, load(args.results, "cycle.json"))
+    echo_section(report, load(args.results, "echo.json"))
+    heartbeat_section(report, load(args.results, "heartbeat.json"))
+    startup_section(report, load(args.results, "startup.json"))
+    scale_section(report, load(args.results, "scale.json"))
+    drew = picture(args.results, args.picture)
+    info = machine(args.results)
+
+    out = [
+        "# Benchmarks",
+        "",
+        "Generated by `make bench` (`bench/run`, `bench/report.py`): do not edit by hand; the notes at the end "
+        "are generated from the figures too.",
+        "",
+        f"Run: {info.get('date', '?')} on {info.get('cpu', '?')}, {info.get('cores', '?')} cores, kernel "
+        f"{info.get('kernel', '?')}, {info.get('build', '?')} build. Load average at start "
+        f"{info.get('load_start', '?')}, at end {info.get('load_end', '?')} (this machine is shared: other "
+        "builds and tests ran during the measurements, which shows in every tail figure)."
+        + (" **Quick run: figures too short to rely on.**" if info.get("quick") == "1" else ""),
+        "",
+        "Each figure is measured side by side with its baseline in the same run (raw Cyclone DDS on the C API "
+        "with the same types and QoS, or a bare `clock_nanosleep` loop) and given as a ratio.",
+        "",
+        "## Against DESIGN.md section 8",
+        "",
+        "| aim | measured | |",
+        "|---|---|---|",
+    ]
+    out += [f"| {aim} | {measured} | {v} |" for aim, measured, v in report.summary]
+    out.append("")
+    out += report.sections
+    if drew:
+        out += ["## Jitter distribution", "", "![period jitter](benchmarks-jitter.svg)", ""]
+    out += ["## Where it falls short, and why", ""]
+    out += report.shortfalls or ["Nothing: every aim is met in this run."]
+    out.append("")
+    with open(args.markdown, "w") as f:
+        f.write("\n".join(out))
+    print(f"wrote {args.markdown}" + (f" and {args.picture}" if drew else ""))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+#include "proc_stats.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace hubrt::bench {
+
+Expected<ProcSample> read_proc(pid_t pid) {
+  ProcSample sample;
+  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
+  std::string line;
+  if (!stat || !std::getline(stat, line)) {
+    return make_error(ErrorCode::kNotFound, fmt::format("process {} is gone", pid));
+  }
+  // The command name (field 2) may contain spaces; the fields after its ')' are fixed: utime and
+  // stime are fields 14 and 15, i.e. the 12th and 13th after the state letter.
+  const auto close = line.rfind(')');
+  if (close == std::string::npos)
+    return make_error(ErrorCode::kIo, fmt::format("/proc/{}/stat: no ')'", pid));
+  std::istringstream rest(line.substr(close + 2));
+  std::string field;
+  unsigned long long utime = 0;
+  unsigned long long stime = 0;
+  for (int i = 3; i <= 15 && rest >> field; ++i) {
+    if (i == 14) utime = std::stoull(field);
+    if (i == 15) stime = std::stoull(field);
+  }
+  const auto ticks = static_cast<double>(sysconf(_SC_CLK_TCK));
+  sample.cpu_s = static_cast<double>(utime + stime) / ticks;
+  std::ifstream status(fmt::format("/proc/{}/status", pid));
+  while (std::getline(status, line)) {
+    std::istringstream fields(line);
+    std::string key;
+    double value = 0;
+    fields >> key >> value;
+    if (key == "VmRSS:") sample.rss_mb = value / 1024.0;
+    if (key == "VmHWM:") sample.hwm_mb = value / 1024.0;
+    if (key == "Threads:") sample.threads = static_cast<int>(value);
+  }
+  return sample;
+}
+
+double cpu_percent(const ProcSample& before, const ProcSample& after, double elapsed_s) noexcept {
+  return elapsed_s > 0 ? (after.cpu_s - before.cpu_s) / elapsed_s * 100.0 : 0.0;
+}
+
+}  // namespace hubrt::bench

@@ -1,0 +1,88 @@
+#include "hub_diagnostics.h"
+
+#include <charconv>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "hubrt/dds/reader.h"
+#include "hubrt/dds/sample.h"
+#include "hubrt/dds/topic.h"
+#include "hubrt/msgs/all_types.h"
+#include "hubrt/msgs/json.h"
+
+namespace hubrt::hubctl {
+namespace {
+
+constexpr std::string_view kDiagnosticsTopic = "/diagnostics";
+constexpr std::string_view kDiagnosticsType = "diagnostic_msgs/msg/DiagnosticArray";
+
+std::optional<double> number(const std::string& text) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+bool complete(const DiagnosticsByHub& hubs, const std::set<std::string>& wanted) {
+  for (const std::string& hub : wanted) {
+    const auto it = hubs.find(hub);
+    if (it == hubs.end() || it->second.hub_type.empty()) return false;
+  }
+  return !wanted.empty();
+}
+
+}  // namespace
+
+void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& hubs) {
+  const auto statuses = array.find("status");
+  if (statuses == array.end() || !statuses->is_array()) return;
+  for (const auto& status : *statuses) {
+    const std::string name = status.value("name", "");
+    const auto colon = name.find(": ");
+    if (colon == std::string::npos) continue;
+    const std::string hub = name.substr(0, colon);
+    const std::string part = name.substr(colon + 2);
+    std::map<std::string, std::string> values;
+    if (const auto kv = status.find("values"); kv != status.end() && kv->is_array()) {
+      for (const auto& pair : *kv) values[pair.value("key", "")] = pair.value("value", "");
+    }
+    if (const auto type = values.find("hub_type"); type != values.end()) {
+      HubDiagnostics& d = hubs[hub];
+      d.hub_type = type->second;
+      if (const auto it = values.find("period_ms"); it != values.end()) d.period_ms = number(it->second);
+      if (const auto it = values.find("command_timeout_ms"); it != values.end())
+        d.command_timeout_ms = number(it->second);
+    } else if (const auto node_type = values.find("node_type"); node_type != values.end()) {
+      hubs[hub].node_types[part] = node_type->second;
+    }
+  }
+}
+
+Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& participant,
+                                                  const std::set<std::string>& wanted, double timeout_s) {
+  DiagnosticsByHub hubs;
+  const msgs::TypeInfo* type = msgs::all_types().find(kDiagnosticsType);
+  if (type == nullptr || type->descriptor == nullptr) {
+    return make_error(ErrorCode::kInternal,
+                      fmt::format("{} is not built into this hubctl", kDiagnosticsType));
+  }
+  auto topic = dds::UntypedTopic::create(participant, *type->descriptor, kDiagnosticsTopic);
+  if (!topic) return std::move(topic).error();
+  auto reader = dds::UntypedReader::create(participant, *topic);
+  if (!reader) return std::move(reader).error();
+  dds::UntypedSample sample(*type->descriptor);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline && !complete(hubs, wanted)) {
+    const Result<bool> taken = reader->take_next(sample.data());
+    if (!taken.is_ok()) break;
+    if (taken.value()) {
+      absorb_diagnostics(msgs::to_json(*type, sample.data()), hubs);
+      continue;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return hubs;
+}
+
+}  // namespace hubrt::hubctl

@@ -1,0 +1,39 @@
+// What hubs say about themselves on /diagnostics (diagnostic_msgs/DiagnosticArray): per hub its
+// type, cycle period and command timeout; per node its type. The conformance suite learns the
+// expected rate and the watchdog timeout here, from the wire, instead of from the hub's files.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hubrt/base/status.h"
+#include "hubrt/dds/participant.h"
+
+namespace hubrt::hubctl {
+
+struct HubDiagnostics {
+  std::string hub_type;
+  std::optional<double> period_ms;
+  std::optional<double> command_timeout_ms;
+  std::map<std::string, std::string, std::less<>> node_types;  // node name -> node type
+};
+
+using DiagnosticsByHub = std::map<std::string, HubDiagnostics, std::less<>>;
+
+// Reads one DiagnosticArray (as msgs::to_json gives it) into `hubs`. Status "<hub>: cycle" with
+// key hub_type describes a hub (period_ms, command_timeout_ms); a status "<hub>: <node>" with key
+// node_type describes a node. Other statuses are ignored.
+void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& hubs);
+
+// Listens on /diagnostics until every hub in `wanted` has described itself and its nodes, or
+// `timeout_s` passes; returns what was heard (possibly less than wanted). Hubs publish
+// diagnostics at 1 Hz by default, so allow a little more than a second.
+// Errors: the DDS entities that could not be created.
+Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& participant,
+                                                  const std::set<std::string>& wanted, double timeout_s);
+
+}  // namespace hubrt::hubctl

@@ -1,0 +1,302 @@
+// The conformance verdicts on made-up observations: each check passes a hub that behaves and
+// fails the misbehaviour it exists for.
+#include "conformance_checks.h"
+
+#include <gtest/gtest.h>
+
+namespace hubrt::hubctl {
+namespace {
+
+const Thresholds kDefaults = default_thresholds();
+
+// States every `period` s from t0 with consecutive sequence numbers; the hub stamps them at
+// the same instants (its wall clock offset by 1e9 s, to show only differences matter).
+std::vector<Observation> heartbeat(std::size_t n, double period, double t0 = 100.0, std::uint64_t seq0 = 1) {
+  std::vector<Observation> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    Observation o;
+    o.arrival_s = t0 + static_cast<double>(i) * period;
+    o.stamp_s = 1e9 + o.arrival_s;
+    o.seq = seq0 + i;
+    out.push_back(o);
+  }
+  return out;
+}
+
+nlohmann::ordered_json command(const char* action) {
+  nlohmann::ordered_json c;
+  c["target_type"] = "dock";
+  c["target_name"] = "dock";
+  c["action"] = action;
+  return c;
+}
+
+// A command in force from arrival of states[0] on: fresh, echoing it, t_plus from 0.
+void commanded(std::vector<Observation>& states, const char* action) {
+  const double start = states.front().arrival_s;
+  for (Observation& o : states) {
+    o.fresh = true;
+    o.echo = command(action);
+    o.t_plus = o.arrival_s - start;
+  }
+}
+
+CheckResult find(const std::vector<CheckResult>& results, const std::string& id) {
+  for (const CheckResult& r : results) {
+    if (r.id == id) return r;
+  }
+  ADD_FAILURE() << "no check " << id;
+  return {};
+}
+
+TEST(Heartbeat, ASteadyHeartbeatPasses) {
+  const auto states = heartbeat(51, 0.1);
+  const HeartbeatFigures f = measure_heartbeat(states, 0.1);
+  EXPECT_NEAR(f.rate_hz, 10.0, 1e-9);
+  EXPECT_NEAR(f.jitter_ms.max, 0.0, 1e-6);
+  for (const CheckResult& r : check_heartbeat(f, 0.1, kDefaults))
+    EXPECT_EQ(r.verdict, Verdict::kPass) << r.id;
+}
+
+TEST(Heartbeat, AHubAtTheWrongRateFails) {
+  const auto states = heartbeat(51, 0.102);  // a hub that sleeps 2 ms too long every cycle
+  const auto results = check_heartbeat(measure_heartbeat(states, 0.1), 0.1, kDefaults);
+  EXPECT_EQ(find(results, "rate_error").verdict, Verdict::kFail);
+  EXPECT_NEAR(*find(results, "rate_error").number, 1.96, 0.01);
+}
+
+TEST(Heartbeat, AStallLongerThanTwoPeriodsFailsTheMaximumNotTheMedian) {
+  auto states = heartbeat(51, 0.1);
+  for (std::size_t i = 25; i < states.size(); ++i)
+    states[i].arrival_s += 0.15;  // one late State, then on time
+  const auto results = check_heartbeat(measure_heartbeat(states, 0.1), 0.1, kDefaults);
+  EXPECT_EQ(find(results, "jitter_max").verdict, Verdict::kFail);
+  EXPECT_NEAR(*find(results, "jitter_max").number, 150.0, 1e-6);
+  EXPECT_EQ(find(results, "jitter_p50").verdict, Verdict::kPass);
+}
+
+TEST(Heartbeat, JitterBoundsHaveAFloorAtHighRates) {
+  auto states = heartbeat(1001, 0.001);
+  for (std::size_t i = 0; i < states.size(); i += 2)
+    states[i].arrival_s += 0.0008;  // 0.8 ms scheduling noise
+  const auto results = check_heartbeat(measure_heartbeat(states, 0.001), 0.001, kDefaults);
+  // 25 % of 1 ms would be 0.25 ms; the 2 ms floor keeps scheduler noise from failing the hub.
+  EXPECT_EQ(find(results, "jitter_p99").verdict, Verdict::kPass);
+  EXPECT_DOUBLE_EQ(*find(results, "jitter_p99").limit, 2.0);
+}
+
+TEST(Sequence, GapsAndRepeatsAreCounted) {
+  auto states = heartbeat(10, 0.1);
+  EXPECT_EQ(check_sequence(states, kDefaults).verdict, Verdict::kPass);
+  states[4].seq = states[3].seq;                                       // repeated
+  for (std::size_t i = 6; i < states.size(); ++i) states[i].seq += 2;  // two lost
+  const CheckResult r = check_sequence(states, kDefaults);
+  EXPECT_EQ(r.verdict, Verdict::kFail);
+  EXPECT_EQ(*r.number, 4.0) << r.detail;  // 4 -> 4 (repeat), 4 -> 6 (one missing), 6 -> 9 (two missing)
+}
+
+TEST(FirstState, MissingOrLateFails) {
+  EXPECT_EQ(check_first_state(std::nullopt, "since start", kDefaults).verdict, Verdict::kFail);
+  EXPECT_EQ(check_first_state(0.04, "since start", kDefaults).verdict, Verdict::kPass);
+  EXPECT_EQ(check_first_state(1.5, "since start", kDefaults).verdict, Verdict::kFail);
+}
+
+TEST(Fresh, TrueWhileUncommandedFails) {
+  auto states = heartbeat(5, 0.1);
+  EXPECT_EQ(check_fresh_before(states).verdict, Verdict::kPass);
+  states[3].fresh = true;
+  EXPECT_EQ(check_fresh_before(states).verdict, Verdict::kFail);
+}
+
+TEST(Fresh, FalseWhileCommandedFails) {
+  auto states = heartbeat(5, 0.1);
+  commanded(states, "monitor");
+  EXPECT_EQ(check_fresh_while_commanded(states).verdict, Verdict::kPass);
+  states[2].fresh = false;
+  EXPECT_EQ(check_fresh_while_commanded(states).verdict, Verdict::kFail);
+}
+
+TEST(TPlus, FollowingWallTimePasses) {
+  auto states = heartbeat(11, 0.1);
+  commanded(states, "monitor");
+  EXPECT_EQ(check_t_plus_grows(states, kDefaults).verdict, Verdict::kPass);
+}
+
+TEST(TPlus, AStuckOrSlowTPlusFails) {
+  auto stuck = heartbeat(11, 0.1);
+  commanded(stuck, "monitor");
+  for (Observation& o : stuck) o.t_plus = 0;  // never grows
+  EXPECT_EQ(check_t_plus_grows(stuck, kDefaults).verdict, Verdict::kFail);
+
+  auto slow = heartbeat(11, 0.1);
+  commanded(slow, "monitor");
+  for (Observation& o : slow) o.t_plus *= 0.9;  // a clock 10 % slow
+  EXPECT_EQ(check_t_plus_grows(slow, kDefaults).verdict, Verdict::kFail);
+}
+
+TEST(TPlus, ARepeatThatRestartsTPlusFails) {
+  // t_plus falling back to 0 at every repetition: repeats treated as new commands.
+  auto states = heartbeat(11, 0.1);
+  commanded(states, "monitor");
+  states[5].t_plus = 0;
+  EXPECT_EQ(check_t_plus_grows(states, kDefaults).verdict, Verdict::kFail);
+}
+
+TEST(TPlus, RestartsOnAChangedCommand) {
+  auto before = heartbeat(11, 0.1);
+  commanded(before, "monitor");
+  Observation changed = before.back();
+  changed.echo = command("reset");
+  changed.t_plus = 0.0;
+  EXPECT_EQ(check_t_plus_restarts(changed, &before.back(), kDefaults).verdict, Verdict::kPass);
+  changed.t_plus = before.back().t_plus + 0.1;  // went on counting
+  EXPECT_EQ(check_t_plus_restarts(changed, &before.back(), kDefaults).verdict, Verdict::kFail);
+}
+
+TEST(Repeats, RepublishingEveryRepetitionFails) {
+  auto states = heartbeat(11, 0.1);  // 1 s of heartbeat
+  commanded(states, "monitor");
+  EXPECT_EQ(check_repeats_silent(states, 0.1, kDefaults).verdict, Verdict::kPass);
+  // The same second, but the hub published an extra State for each of 10 repetitions.
+  auto chatty = heartbeat(11, 0.1);
+  commanded(chatty, "monitor");
+  for (std::size_t i = 0; i < chatty.size(); ++i) chatty[i].seq = 1 + 2 * i;
+  const CheckResult r = check_repeats_silent(chatty, 0.1, kDefaults);
+  EXPECT_EQ(r.verdict, Verdict::kFail);
+  EXPECT_EQ(*r.number, 10.0);
+}
+
+TEST(EchoLatency, PercentilesAndLostCommands) {
+  std::vector<double> latencies(100, 0.2);
+  latencies[99] = 5.0;
+  auto results = check_echo_latency(latencies, 0, kDefaults);
+  EXPECT_EQ(find(results, "echo_all").verdict, Verdict::kPass);
+  EXPECT_EQ(find(results, "echo_p50").verdict, Verdict::kPass);
+  EXPECT_EQ(find(results, "echo_p99").verdict, Verdict::kPass);
+  results = check_echo_latency(latencies, 1, kDefaults);
+  EXPECT_EQ(find(results, "echo_all").verdict, Verdict::kFail);
+  // A hub that answers only at its next 10 Hz cycle: half a period on average.
+  results = check_echo_latency(std::vector<double>(100, 50.0), 0, kDefaults);
+  EXPECT_EQ(find(results, "echo_p50").verdict, Verdict::kFail);
+}
+
+Observation tripped_at(double arrival, bool with_error = true) {
+  Observation o;
+  o.arrival_s = arrival;
+  o.fresh = false;
+  o.echo = command("monitor");
+  if (with_error)
+    o.errors.push_back("command timeout: no valid command for 1.05 s (limit 1.00 s); outputs in safe state");
+  return o;
+}
+
+TEST(Watchdog, TripWithinTimeoutPlusPeriodPasses) {
+  const std::vector<WatchdogRound> rounds{{10.0, tripped_at(11.05)}, {20.0, tripped_at(21.10)}};
+  const auto results = check_watchdog(rounds, 1.0, 0.1, "command timeout", kDefaults);
+  EXPECT_EQ(find(results, "watchdog").verdict, Verdict::kPass);
+  EXPECT_EQ(find(results, "watchdog_error").verdict, Verdict::kPass);
+}
+
+TEST(Watchdog, LateEarlyMissingOrUnreportedTripsFail) {
+  const std::vector<WatchdogRound> late{{10.0, tripped_at(11.3)}};
+  EXPECT_EQ(find(check_watchdog(late, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
+            Verdict::kFail);
+  const std::vector<WatchdogRound> early{{10.0, tripped_at(10.5)}};
+  EXPECT_EQ(find(check_watchdog(early, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
+            Verdict::kFail);
+  const std::vector<WatchdogRound> never{{10.0, std::nullopt}};
+  EXPECT_EQ(find(check_watchdog(never, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
+            Verdict::kFail);
+  const std::vector<WatchdogRound> silent{{10.0, tripped_at(11.05, false)}};
+  EXPECT_EQ(find(check_watchdog(silent, 1.0, 0.1, "command timeout", kDefaults), "watchdog_error").verdict,
+            Verdict::kFail);
+}
+
+TEST(SafeState, DeclaredFieldsAreChecked) {
+  Observation o = tripped_at(11.0);
+  o.state = nlohmann::ordered_json::parse(
+      R"({"rsp": {"locked": true, "safe_state": true}, "slots": [{"occupied": false}]})");
+  const std::vector<Observation> states{o};
+  EXPECT_EQ(check_safe_state(states, {}).verdict, Verdict::kInfo);
+  EXPECT_EQ(check_safe_state(states, {{"rsp.locked", "true"}, {"slots[0].occupied", "false"}}).verdict,
+            Verdict::kPass);
+  const CheckResult wrong = check_safe_state(states, {{"rsp.locked", "false"}});
+  EXPECT_EQ(wrong.verdict, Verdict::kFail);
+  EXPECT_NE(wrong.detail.find("rsp.locked is true"), std::string::npos) << wrong.detail;
+  EXPECT_EQ(check_safe_state(states, {{"rsp.missing", "true"}}).verdict, Verdict::kFail);
+}
+
+TEST(NoStaleReapply, OnlyTheNewCommandActsAfterSilence) {
+  std::vector<Observation> between{tripped_at(11.0), tripped_at(11.1), tripped_at(11.2)};
+  Observation back;
+  back.arrival_s = 11.25;
+  back.fresh = true;
+  back.echo = command("reset");
+  back.t_plus = 0;
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("reset"), 11.2, kDefaults, "x", "x").verdict,
+            Verdict::kPass);
+}
+
+TEST(NoStaleReapply, TheOldCommandActingAgainFails) {
+  std::vector<Observation> between{tripped_at(11.0), tripped_at(11.1)};
+  Observation back;
+  back.arrival_s = 11.25;
+  back.fresh = true;
+  back.t_plus = 0;
+  // Fresh again, but echoing the command from before the silence, not the one just sent.
+  back.echo = command("monitor");
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("reset"), 11.2, kDefaults, "x", "x").verdict,
+            Verdict::kFail);
+  // Fresh before anything was sent.
+  back.echo = command("reset");
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("reset"), 11.3, kDefaults, "x", "x").verdict,
+            Verdict::kFail);
+  // Something took effect during the silence.
+  between[1].fresh = true;
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("reset"), 11.2, kDefaults, "x", "x").verdict,
+            Verdict::kFail);
+}
+
+TEST(NoStaleReapply, TheSameCommandReturningMustRestartTPlus) {
+  std::vector<Observation> between{tripped_at(11.0), tripped_at(11.1)};
+  Observation back;
+  back.arrival_s = 11.25;
+  back.fresh = true;
+  back.echo = command("monitor");
+  back.t_plus = 1.4;  // carried on from before the silence: the stale command was resumed
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("monitor"), 11.2, kDefaults, "x", "x").verdict,
+            Verdict::kFail);
+  back.t_plus = 0;
+  EXPECT_EQ(check_no_stale_reapply(between, back, command("monitor"), 11.2, kDefaults, "x", "x").verdict,
+            Verdict::kPass);
+}
+
+TEST(GotReset, TrueOnlyWhileResetIsInForce) {
+  auto before = heartbeat(3, 0.1);
+  auto during = heartbeat(3, 0.1, 101);
+  auto after = heartbeat(3, 0.1, 102);
+  for (Observation& o : during) o.got_reset = true;
+  EXPECT_EQ(check_got_reset(before, during, after).verdict, Verdict::kPass);
+  after[2].got_reset = true;  // latched
+  EXPECT_EQ(check_got_reset(before, during, after).verdict, Verdict::kFail);
+  after[2].got_reset = false;
+  during[1].got_reset = false;  // acts once and forgets while reset still repeats
+  EXPECT_EQ(check_got_reset(before, during, after).verdict, Verdict::kFail);
+  EXPECT_EQ(check_got_reset({}, during, after).verdict, Verdict::kFail);
+}
+
+TEST(JsonPath, FindsNestedFieldsAndComparesText) {
+  const auto state = nlohmann::ordered_json::parse(R"({"a": {"b": [1, {"c": "x"}]}, "f": 0.5, "t": true})");
+  EXPECT_EQ(json_at(state, "a.b[1].c"), "x");
+  EXPECT_TRUE(json_at(state, "a.b[2]").is_null());
+  EXPECT_TRUE(json_at(state, "nope").is_null());
+  EXPECT_TRUE(json_matches_text(json_at(state, "f"), "0.5"));
+  EXPECT_FALSE(json_matches_text(json_at(state, "f"), "0.6"));
+  EXPECT_TRUE(json_matches_text(json_at(state, "t"), "true"));
+  EXPECT_TRUE(json_matches_text(json_at(state, "t"), "1"));
+  EXPECT_FALSE(json_matches_text(json_at(state, "t"), "false"));
+  EXPECT_FALSE(json_matches_text(json_at(state, "nope"), "null"));
+}
+
+}  // namespace
+}  // namespace hubrt::hubctl

@@ -1,0 +1,57 @@
+// Where the smart tool's arm is, from its three position sensors (home, pre-home, out-of-range):
+// none active = operating position, exactly one = that position, more than one = unclear.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "hubrt/base/time.h"
+#include "hubrt/hal/backend.h"
+#include "hubrt/hal/board/board_config.h"
+#include "hubrt/hubs/reopening_input.h"
+#include "hubrt/runtime/error_list.h"
+
+#include "tool_settings.h"
+
+namespace hubrt::tool_ecu {
+
+enum class ArmPosition : std::uint8_t {
+  kUnknown,  // a sensor could not be read
+  kOperating,
+  kHome,
+  kPreHome,
+  kOutOfRange,
+  kUnclear,  // an inconsistent combination
+};
+
+// The position the three sensor levels mean. Pure.
+ArmPosition decode_arm_position(bool home, bool pre_home, bool out_of_range) noexcept;
+// "operating", "home", "pre_home", "out_of_range", "unclear", "unknown".
+std::string_view to_string(ArmPosition position) noexcept;
+
+// The three sensors, opened again until they work (ReopeningInput). Not thread-safe: the cycle
+// thread owns it. Reading does not allocate (reopening does).
+class ArmSensors {
+ public:
+  // Opens the sensors now; one that fails is reported and retried.
+  // Errors: a signal missing from the board (kNotFound, naming it).
+  static Expected<ArmSensors> create(const ArmSignals& signals, const hal::BoardConfig& board,
+                                     hal::Backend& backend, Time now);
+
+  // Samples all three; kUnknown when any read fails.
+  ArmPosition read(Time now) noexcept;
+  // Adds what is wrong with the sensors (not available, read failed) to `errors`.
+  void report(runtime::ErrorList& errors) const noexcept;
+
+ private:
+  struct Sensor {
+    hubs::ReopeningInput input;
+    ErrorCode last_error = ErrorCode::kOk;  // of the last read
+  };
+  explicit ArmSensors(std::array<Sensor, 3> sensors) : sensors_(std::move(sensors)) {}
+
+  std::array<Sensor, 3> sensors_;  // home, pre-home, out-of-range
+};
+
+}  // namespace hubrt::tool_ecu

@@ -1,0 +1,200 @@
+#include "lift_logic.h"
+
+#include <cstdlib>
+#include <variant>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "hubrt/protocol/lift_drive_modbus.h"
+
+namespace hubrt::tool_ecu {
+
+namespace ld = protocol::lift_drive;
+
+namespace {
+
+std::string_view view(const char* text) noexcept {
+  return text == nullptr ? std::string_view() : std::string_view(text);
+}
+
+char* wire(std::string_view literal_or_buffer) noexcept {
+  return const_cast<char*>(literal_or_buffer.data());  // NOLINT: the wire type wants char*; never written
+}
+
+// Within this of a named position (and in position) the lift is "at" it: the drive's own window.
+constexpr int kAtWindowTenthMm = 5;
+
+std::string describe(const hal::ModbusConfig& config) {
+  if (const auto* tcp = std::get_if<hal::ModbusTcpEndpoint>(&config.endpoint)) {
+    return fmt::format("{} (tcp {}:{}, unit {})", config.device, tcp->host, tcp->port, config.unit_id);
+  }
+  const auto& rtu = std::get<hal::ModbusRtuEndpoint>(config.endpoint);
+  return fmt::format("{} (rtu {}, unit {})", config.device, rtu.device, config.unit_id);
+}
+
+}  // namespace
+
+std::string_view fault_name(std::uint16_t code) noexcept {
+  switch (static_cast<ld::FaultCode>(code)) {
+    case ld::FaultCode::kNone:
+      return "";
+    case ld::FaultCode::kOvercurrent:
+      return "overcurrent";
+    case ld::FaultCode::kFollowingError:
+      return "following error";
+    case ld::FaultCode::kOvertemperature:
+      return "overtemperature";
+    case ld::FaultCode::kWatchdog:
+      return "communication watchdog";
+  }
+  return "unknown";
+}
+
+Expected<LiftLogic> LiftLogic::create(const LiftSettings& settings, const hal::BoardConfig& board,
+                                      hal::Backend& backend, const Clock& clock,
+                                      std::shared_ptr<spdlog::logger> log) {
+  const hal::BoardModbusDevice* device = board.find_modbus(settings.device);
+  if (device == nullptr) {
+    return make_error(ErrorCode::kNotFound,
+                      fmt::format("lift: board {} has no Modbus device '{}'", board.file, settings.device));
+  }
+  auto client = backend.open_modbus(device->config);
+  if (!client) {
+    return make_error(client.error().code, fmt::format("lift: {}", client.error().message));
+  }
+  // Before the worker thread starts: the Modbus client logs through spdlog's default logger from
+  // that thread, so spdlog's registry must exist before it (thread creation orders the two).
+  if (!log) log = spdlog::default_logger();
+  auto worker = std::make_unique<LiftDriveWorker>(std::move(*client), clock, settings.poll_interval,
+                                                  settings.drive_watchdog_ms);
+  return LiftLogic(settings, std::move(worker), describe(device->config), clock.now().mono, std::move(log));
+}
+
+LiftLogic::LiftLogic(LiftSettings settings, std::unique_ptr<LiftDriveWorker> worker, std::string endpoint,
+                     Time created, std::shared_ptr<spdlog::logger> log)
+    : settings_(std::move(settings)),
+      worker_(std::move(worker)),
+      endpoint_(std::move(endpoint)),
+      created_(created),
+      log_(std::move(log)) {
+  intent_.speed_mm_s = settings_.speed_mm_s;
+  worker_->post(intent_);
+}
+
+int LiftLogic::position_index(std::string_view name) const noexcept {
+  for (std::size_t i = 0; i < settings_.positions.size(); ++i) {
+    if (settings_.positions[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+bool LiftLogic::validate(const Command& command, runtime::Problem& problem) const noexcept {
+  if (view(command.action) != "move") return true;  // position means nothing to stop and reset
+  if (position_index(view(command.position)) >= 0) return true;
+  std::array<std::string_view, LiftSettings::kMaxPositions> names{};
+  for (std::size_t i = 0; i < settings_.positions.size(); ++i) names[i] = settings_.positions[i].name;
+  problem.format("unknown position '{}' (expected one of: {})", view(command.position),
+                 fmt::join(names.begin(),
+                           names.begin() + static_cast<std::ptrdiff_t>(settings_.positions.size()), ", "));
+  return false;
+}
+
+void LiftLogic::read_inputs(Time now) noexcept {
+  snap_ = worker_->snapshot();
+  online_ = snap_.answered && now - snap_.read_at <= settings_.answer_within;
+  const bool was_lost = not_answering_.present();
+  const bool was_fault = drive_fault_.present();
+  // Before its first answer the drive is reported but not latched: it may boot after the hub.
+  not_answering_.observe(snap_.answered && !online_);
+  drive_fault_.observe(online_ && (snap_.status_word & ld::status::kFault) != 0);
+  if (!was_lost && not_answering_.present()) {
+    log_->error("lift: drive {} stopped answering ({})", endpoint_, to_string(snap_.last_error));
+  }
+  if (!was_fault && drive_fault_.present()) {
+    log_->error("lift: drive fault {} ({})", snap_.fault_code, fault_name(snap_.fault_code));
+  }
+}
+
+void LiftLogic::update(const Command* in_force, Time /*now*/) noexcept {
+  target_ = -1;
+  LiftIntent intent = intent_;
+  intent.mode = LiftIntent::Mode::kStop;
+  if (in_force != nullptr && view(in_force->action) == "move") {
+    target_ = position_index(view(in_force->position));
+    const bool may_move = online_ && !not_answering_.active() && !drive_fault_.active();
+    if (target_ >= 0 && may_move) {
+      intent.mode = LiftIntent::Mode::kMove;
+      intent.target_tenth_mm = settings_.positions[static_cast<std::size_t>(target_)].tenth_mm;
+    }
+  }
+  intent_ = intent;
+  worker_->post(intent_);
+}
+
+void LiftLogic::reset() noexcept {
+  not_answering_.reset();
+  drive_fault_.reset();
+  ++intent_.reset_requests;
+  intent_.mode = LiftIntent::Mode::kStop;
+  worker_->post(intent_);
+}
+
+void LiftLogic::enter_safe_state() noexcept {
+  intent_.mode = LiftIntent::Mode::kStop;
+  worker_->post(intent_);
+}
+
+int LiftLogic::position_at() const noexcept {
+  if (!online_ || (snap_.status_word & ld::status::kInPosition) == 0) return -1;
+  for (std::size_t i = 0; i < settings_.positions.size(); ++i) {
+    if (std::abs(int{settings_.positions[i].tenth_mm} - int{snap_.position_tenth_mm}) <= kAtWindowTenthMm) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+void LiftLogic::report(State& state, runtime::ErrorList& errors, Time now) noexcept {
+  const int at = position_at();
+  state.at = at >= 0 ? wire(settings_.positions[static_cast<std::size_t>(at)].name) : wire("");
+  state.target = target_ >= 0 ? wire(settings_.positions[static_cast<std::size_t>(target_)].name) : wire("");
+  state.target_mm =
+      target_ >= 0
+          ? static_cast<float>(ld::to_mm(settings_.positions[static_cast<std::size_t>(target_)].tenth_mm))
+          : 0.0F;
+  state.position_mm = static_cast<float>(ld::to_mm(snap_.position_tenth_mm));
+  state.speed_mm_s = static_cast<float>(snap_.speed_mm_s);
+  state.drive_online = online_;
+  state.enabled = (snap_.status_word & ld::status::kEnabled) != 0;
+  state.moving = (snap_.status_word & ld::status::kMoving) != 0;
+  state.in_position = (snap_.status_word & ld::status::kInPosition) != 0;
+  state.fault = (snap_.status_word & ld::status::kFault) != 0;
+  state.fault_code = snap_.fault_code;
+  state.fault_text = wire(fault_name(snap_.fault_code));
+
+  if (!snap_.answered) {
+    if (now - created_ > settings_.answer_within) {
+      errors.add("lift drive {}: no answer since start (last error: {}); lift stopped", endpoint_,
+                 to_string(snap_.last_error));
+    }
+  } else if (not_answering_.present()) {
+    errors.add("lift drive {} not answering for {:.2f} s (limit {:.2f} s, last error: {}); lift stopped",
+               endpoint_, to_seconds(now - snap_.read_at), to_seconds(settings_.answer_within),
+               to_string(snap_.last_error));
+  } else if (not_answering_.only_latched()) {
+    errors.add("lift drive {} stopped answering for a while; send reset to clear", endpoint_);
+  }
+  if (drive_fault_.present()) {
+    errors.add("lift drive fault {} ({}); lift stopped; send reset to clear", snap_.fault_code,
+               fault_name(snap_.fault_code));
+  } else if (drive_fault_.only_latched()) {
+    errors.add("lift drive had a fault; send reset to clear");
+  }
+  if (snap_.write_refused) {
+    errors.add("lift drive {} refused the command (exception answer): is the target within its travel?",
+               endpoint_);
+  }
+}
+
+}  // namespace hubrt::tool_ecu

@@ -1,0 +1,82 @@
+// The lift node: the smart tool's lifting system on a Modbus motor drive. It moves to named
+// positions from the hub file ("home", "float" above the engine, "work"), reports position,
+// target, motion and the drive's fault, and stops when anything is wrong.
+//
+// Safe state (no command in force, a latched fault, the drive not answering): stop — halt and
+// hold; the power stage is never switched on for it. A drive fault and a drive that stopped
+// answering latch until a reset; a reset also pulses the drive's reset-fault bit. Motion resumes
+// only with a fresh "move" after the reset.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string_view>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/hal/backend.h"
+#include "hubrt/hal/board/board_config.h"
+#include "hubrt/runtime/node.h"
+#include "hubrt/runtime/text_buffer.h"
+
+#include "latched_fault.h"
+#include "lift_drive_worker.h"
+#include "tool_messages.h"
+#include "tool_settings.h"
+
+namespace hubrt::tool_ecu {
+
+class LiftLogic {
+ public:
+  using Command = LiftCommand;
+  using State = LiftState;
+  static constexpr std::string_view kType = "lift";
+  static constexpr std::array<std::string_view, 3> kActions{"move", "stop", "reset"};
+
+  // Opens the drive's Modbus client and starts its worker. `clock` stamps the drive's answers;
+  // it must be the clock whose time the cycle passes in, and outlive the logic.
+  // Errors: the device missing from the board (kNotFound), the backend's open_modbus errors
+  // (e.g. an RTU serial device that does not exist), naming the device.
+  static Expected<LiftLogic> create(const LiftSettings& settings, const hal::BoardConfig& board,
+                                    hal::Backend& backend, const Clock& clock,
+                                    std::shared_ptr<spdlog::logger> log = nullptr);
+
+  LiftLogic(LiftLogic&&) noexcept = default;
+  LiftLogic& operator=(LiftLogic&&) noexcept = default;
+  ~LiftLogic() = default;
+
+  // move: position is one of the hub file's.
+  bool validate(const Command& command, runtime::Problem& problem) const noexcept;
+  void read_inputs(Time now) noexcept;
+  void update(const Command* in_force, Time now) noexcept;
+  void reset() noexcept;
+  void report(State& state, runtime::ErrorList& errors, Time now) noexcept;
+  void enter_safe_state() noexcept;
+
+  // For tests: the worker's latest snapshot (thread-safe).
+  [[nodiscard]] LiftSnapshot snapshot() const noexcept { return worker_->snapshot(); }
+
+ private:
+  LiftLogic(LiftSettings settings, std::unique_ptr<LiftDriveWorker> worker, std::string endpoint,
+            Time created, std::shared_ptr<spdlog::logger> log);
+  [[nodiscard]] int position_index(std::string_view name) const noexcept;
+  [[nodiscard]] int position_at() const noexcept;
+
+  LiftSettings settings_;
+  std::unique_ptr<LiftDriveWorker> worker_;
+  std::string endpoint_;  // for messages, e.g. "lift_drive (127.0.0.1:1502, unit 1)"
+  Time created_;
+  std::shared_ptr<spdlog::logger> log_;
+
+  LiftSnapshot snap_;  // this cycle's copy
+  bool online_ = false;
+  LatchedFault not_answering_;
+  LatchedFault drive_fault_;
+  LiftIntent intent_;
+  int target_ = -1;  // index of the position a move in force goes to
+};
+
+// The name of a drive fault code ("overcurrent", ...), "" for none, "unknown" otherwise.
+std::string_view fault_name(std::uint16_t code) noexcept;
+
+}  // namespace hubrt::tool_ecu

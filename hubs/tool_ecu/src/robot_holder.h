@@ -1,0 +1,50 @@
+// Whether the robot holds the smart tool, as the smart tool's interlocks need it. The production
+// source is the RSP ECU's State through a subscription (RspToolHolder); the interface keeps the
+// logic testable and independent of how that State arrives.
+#pragma once
+
+#include <string_view>
+
+#include "hubrt/assembly/remote_state.h"
+#include "hubrt/base/time.h"
+
+#include "rsp.h"
+#include "rsp_reflect.h"
+
+namespace hubrt::tool_ecu {
+
+struct HolderReading {
+  bool known = false;  // a fresh State was available; false = lost, which counts as "not allowed"
+  bool holds = false;  // the robot holds the smart tool (only meaningful when known)
+  // Known: the tool the robot holds ("none", "smart_tool", ...). Lost: why. Valid until the next
+  // read().
+  std::string_view detail;
+};
+
+class ToolHolderView {
+ public:
+  virtual ~ToolHolderView() = default;
+  // Called on the cycle thread; never allocates.
+  virtual HolderReading read(Time now) noexcept = 0;
+};
+
+// From the RSP ECU's State: holds when a fresh RspState says tool == "smart_tool".
+class RspToolHolder final : public ToolHolderView {
+ public:
+  static constexpr std::string_view kSmartTool = "smart_tool";
+
+  // `rsp` must outlive this object (the hub's Subscriptions own it).
+  explicit RspToolHolder(assembly::RemoteState<hub_msgs_msg_dds__RspState_>& rsp) : rsp_(&rsp) {}
+
+  HolderReading read(Time now) noexcept override {
+    const hub_msgs_msg_dds__RspState_* state = rsp_->fresh(now);
+    if (state == nullptr) return HolderReading{false, false, rsp_->loss_reason(now)};
+    const std::string_view tool = state->tool == nullptr ? std::string_view() : std::string_view(state->tool);
+    return HolderReading{true, tool == kSmartTool, tool};
+  }
+
+ private:
+  assembly::RemoteState<hub_msgs_msg_dds__RspState_>* rsp_;
+};
+
+}  // namespace hubrt::tool_ecu

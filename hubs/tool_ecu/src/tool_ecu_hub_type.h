@@ -1,0 +1,10 @@
+// The Tool ECU hub type: nodes of type "smart_tool" (the nutrunner on CAN and its run lines,
+// buttons, torque-reached, summary alarm and arm position sensors) and "lift" (its lifting
+// system on a Modbus drive).
+#pragma once
+
+#include "hubrt/assembly/hub_type.h"
+
+namespace hubrt::tool_ecu {
+const assembly::HubType& tool_ecu_hub_type() noexcept;
+}  // namespace hubrt::tool_ecu

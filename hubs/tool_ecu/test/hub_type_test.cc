@@ -1,0 +1,51 @@
+#include <gtest/gtest.h>
+
+#include "hubrt/config/hub_config.h"
+
+#include "tool_ecu_hub_type.h"
+
+namespace hubrt::tool_ecu {
+namespace {
+
+Expected<hal::BoardRequirements> requirements_of(const std::string& yaml) {
+  auto root = config::YamlMap::load_string(yaml, "tool.yaml");
+  EXPECT_TRUE(root) << root.error().message;
+  auto config = config::parse_hub_config(*root);
+  EXPECT_TRUE(config) << config.error().message;
+  return tool_ecu_hub_type().requirements(*config);
+}
+
+constexpr const char* kTool =
+    "  tool:\n    type: smart_tool\n    programs: {p: {number: 1, torque_nm: 5, angle_min_deg: 0, "
+    "angle_max_deg: 90}}\n";
+constexpr const char* kRsp =
+    "subscriptions:\n  rsp: {topic: /rsp_ecu/rsp/state, type: hub_msgs/msg/RspState, timeout_ms: 500}\n";
+
+TEST(ToolEcuHubType, NeedsTheRspSubscriptionForTheSmartToolInterlock) {
+  EXPECT_EQ(tool_ecu_hub_type().name(), "tool_ecu");
+  auto ok = requirements_of(std::string("hub: tool_ecu\n") + kRsp + "nodes:\n" + kTool);
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_EQ(ok->can_buses, std::vector<std::string>{"tool_bus"});
+
+  auto missing = requirements_of(std::string("hub: tool_ecu\nnodes:\n") + kTool);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().message,
+            "tool.yaml:4:5: nodes.tool: node 'tool' needs the RSP ECU State as subscription 'rsp', and "
+            "tool.yaml has "
+            "no such subscription (add subscriptions: {rsp: {topic: /rsp_ecu/rsp/state, type: "
+            "hub_msgs/msg/RspState, timeout_ms: 500}})");
+}
+
+TEST(ToolEcuHubType, KnowsItsNodeTypesOnly) {
+  auto wrong = requirements_of("hub: tool_ecu\nnodes:\n  dock:\n    type: dock\n");
+  ASSERT_FALSE(wrong);
+  EXPECT_EQ(
+      wrong.error().message,
+      "tool.yaml:4:11: nodes.dock.type: a tool_ecu hub has nodes of type 'smart_tool' or 'lift', not 'dock'");
+  auto lift = requirements_of("hub: tool_ecu\nnodes:\n  lift:\n    type: lift\n    positions: {home: 1}\n");
+  ASSERT_TRUE(lift) << lift.error().message;
+  EXPECT_EQ(lift->modbus_devices, std::vector<std::string>{"lift_drive"});
+}
+
+}  // namespace
+}  // namespace hubrt::tool_ecu

@@ -1,0 +1,124 @@
+// The smart tool node's steady-state cycle allocates nothing: the generic Node (intake,
+// validation, echo, State) around SmartToolLogic, on the fake backend, through tightenings,
+// a loosen, a change of command mid-run, an interlock dropping and the controller getting lost.
+#include <gtest/gtest.h>
+#include <spdlog/spdlog.h>
+
+#include "hubrt/assembly/node_wiring.h"
+#include "hubrt/config/hub_config.h"
+#include "hubrt/hal/board/board_loader.h"
+#include "hubrt/hal/fake/fake_backend.h"
+
+#include "alloc_counter.h"
+#include "smart_tool_logic.h"
+
+namespace hubrt::tool_ecu {
+namespace {
+
+using hubrt::testing::AllocationScope;
+using std::chrono::milliseconds;
+using RspState = hub_msgs_msg_dds__RspState_;
+
+// Hands the node the planner's command of the moment, every cycle (as the planner repeats it).
+class RepeatingSource final : public runtime::CommandSource<SmartToolCommand> {
+ public:
+  void set(const SmartToolCommand& command) { command_ = command; }
+  Result<const SmartToolCommand*> next() noexcept override {
+    if (given_) {
+      given_ = false;
+      return static_cast<const SmartToolCommand*>(nullptr);
+    }
+    given_ = true;
+    return &command_;
+  }
+
+ private:
+  SmartToolCommand command_{};
+  bool given_ = false;
+};
+
+class CountingSink final : public runtime::StateSink<SmartToolState> {
+ public:
+  Status publish(const SmartToolState& /*state*/) noexcept override {
+    ++published;
+    return Status::ok();
+  }
+  std::uint64_t published = 0;
+};
+
+TEST(SmartToolSteadyCycle, AllocatesNothing) {
+  ManualClock clock;
+  auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
+  ASSERT_TRUE(board) << board.error().message;
+  auto config = config::load_hub_config(std::string(HUBRT_HUBS_DIR) + "/tool_ecu/tool_ecu.yaml");
+  ASSERT_TRUE(config) << config.error().message;
+  auto settings = parse_smart_tool_settings(config->nodes.at(0));
+  ASSERT_TRUE(settings) << settings.error().message;
+  auto fake = hal::fake::FakeBackend::create(*board, clock);
+  ASSERT_TRUE(fake) << fake.error().message;
+  assembly::RemoteState<RspState> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                      hub_msgs_msg_dds__RspState__desc, 0};
+  static_cast<RspState*>(rsp.sample_data())->tool = dds_string_dup("smart_tool");
+  auto logic = SmartToolLogic::create(*settings, *board, **fake, std::make_unique<RspToolHolder>(rsp),
+                                      clock.now().mono);
+  ASSERT_TRUE(logic) << logic.error().message;
+  RepeatingSource source;
+  CountingSink sink;
+  runtime::NodeOptions options;
+  options.name = "tool";
+  runtime::Node<SmartToolLogic> node(options, std::move(*logic), source, sink,
+                                     assembly::message_ops<SmartToolCommand>());
+  hal::fake::SmartToolSimulator* tool = (*fake)->smart_tool("tool_bus");
+  (*fake)->input("tool.arm.home")->set(false);
+
+  std::string action = "tighten";
+  std::string program = "ladder_frame_bolt";
+  std::string type = "smart_tool";
+  std::string name = "tool";
+  SmartToolCommand command{type.data(), name.data(), action.data(), 1, program.data()};
+  const auto run = [&](int cycles) {
+    for (int i = 0; i < cycles; ++i) {
+      clock.advance(milliseconds(50));
+      rsp.note_arrival(clock.now().mono);
+      source.set(command);
+      node.step(clock.now());
+      ASSERT_TRUE(node.publish(clock.now()).is_ok());
+    }
+  };
+  // Warm-up: a whole tightening (first log messages size spdlog's caches, as hubd's start-up
+  // logging does long before its first cycle), a controller lost and back, a reset.
+  run(40);
+  tool->power_off();
+  run(10);
+  tool->power_on();
+  action = "reset";
+  run(5);
+
+  AllocationScope scope;
+  for (std::uint32_t bolt = 2; bolt < 6; ++bolt) {
+    action = "tighten";
+    command.run_id = bolt;
+    run(bolt % 2 == 0 ? 30 : 5);  // odd bolts are interrupted by the next one
+  }
+  const int runs_after_reboot = tool->snapshot().run_counter;  // counts from 0 after the reboot
+  action = "loosen";
+  run(10);
+  action = "idle";
+  run(5);
+  tool->power_off();
+  run(10);
+  tool->power_on();
+  run(5);
+  action = "reset";
+  run(5);
+  const std::size_t allocations = scope.count();
+
+  EXPECT_EQ(allocations, 0u);
+  // It really ran: runs happened and the State says the last one.
+  EXPECT_GE(runs_after_reboot, 4);
+  EXPECT_EQ(node.state().last_result.run_id, 5u);
+  EXPECT_GT(sink.published, 100u);
+}
+
+}  // namespace
+}  // namespace hubrt::tool_ecu
