@@ -35,7 +35,7 @@ test-asan: deps
 
 test-tsan: deps
 	@cmake --preset host-tsan >/dev/null
-	@$(CMAKE_BUILD) host-tsan -j$(JOBS)
+	@$(CMAKE_BUILD) host-tsan -j$(JOBS) --target threaded-tests
 	@ctest --preset host-tsan -j$(JOBS)
 
 test-debug: deps

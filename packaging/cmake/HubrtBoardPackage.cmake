@@ -152,7 +152,7 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "hubrt hub ${HUBRT_PKG_HUB} for board ${HU
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION
     "hubrt hub ${HUBRT_PKG_HUB} for board ${HUBRT_PKG_BOARD}\n"
     "${HUBRT_PKG_DESCRIPTION}. hubd runs as the systemd service hubd (user hubrt) with the board\n"
-    "file and the hub configuration under /etc/hubrt; hubctl lists, watches, commands and checks\n"
+    "file and the hub configuration under /etc/hubrt. hubctl lists, watches, commands and checks\n"
     "hubs over DDS.")
 string(JOIN "" CPACK_DEBIAN_PACKAGE_DESCRIPTION ${CPACK_DEBIAN_PACKAGE_DESCRIPTION})
 set(CPACK_DEBIAN_PACKAGE_SECTION misc)
@@ -161,9 +161,8 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_PROVIDES hubrt-board)
 set(CPACK_DEBIAN_PACKAGE_CONFLICTS hubrt-board)
 set(CPACK_DEBIAN_PACKAGE_REPLACES hubrt-board)
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${_pkg_gen}/control/postinst;${_pkg_gen}/control/prerm;"
-                                       "${_pkg_gen}/control/postrm;${_pkg_gen}/control/conffiles")
-string(JOIN "" CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA})
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${_pkg_gen}/control/postinst" "${_pkg_gen}/control/prerm"
+                                       "${_pkg_gen}/control/postrm" "${_pkg_gen}/control/conffiles")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION TRUE)
 # Only component hubrt-board, installed under / (destinations above are relative to it).
 set(CPACK_INSTALL_CMAKE_PROJECTS "${CMAKE_BINARY_DIR};hubrt;hubrt-board;/")

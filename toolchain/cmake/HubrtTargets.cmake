@@ -64,6 +64,10 @@ function(hubrt_add_test name)
   endif()
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
+  # The ThreadSanitizer build runs only these: target `threaded-tests` (top-level CMakeLists.txt).
+  if("threaded" IN_LIST A_LABELS)
+    set_property(GLOBAL APPEND PROPERTY HUBRT_THREADED_TEST_TARGETS ${name})
+  endif()
   hubrt_target_defaults(${name})
   # Labels and timeout are applied by a small script included after the discovered tests:
   # gtest_discover_tests' PROPERTIES loses the separators of a list value in PRE_TEST mode.

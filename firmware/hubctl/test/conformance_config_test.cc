@@ -1,6 +1,7 @@
 // The conformance suite's data: thresholds with defaults and overrides, and the profiles hubs ship.
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -155,8 +156,12 @@ TEST(Target, ResolvedFromDiagnosticsAndTheProfile) {
                                           {"key": "command_timeout_ms", "value": "500"}]},
       {"name": "left: dock", "values": [{"key": "node_type", "value": "dock"}]}]})"),
                      diagnostics);
+  // The profile is found through $HUBRT_CONFIG_DIR, as an installed hubctl finds it: cross builds
+  // compile in no source-tree fallback. Single-threaded test, so setenv is safe here.
+  ASSERT_EQ(setenv("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR, 1), 0);  // NOLINT(concurrency-mt-unsafe)
   ProfileBook profiles;
   const Target t = resolve_target("/cell/left/dock/state", state, diagnostics, profiles, {});
+  unsetenv("HUBRT_CONFIG_DIR");  // NOLINT(concurrency-mt-unsafe)
   EXPECT_TRUE(t.command_problems.empty()) << t.command_problems.front();
   EXPECT_EQ(t.command_topic, "/cell/dock/command");
   EXPECT_EQ(t.target_type, "dock");
