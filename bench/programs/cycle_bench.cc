@@ -28,6 +28,9 @@
 namespace hubrt::bench {
 namespace {
 
+using hubrt::testing::process_allocations;
+using hubrt::testing::thread_allocations;
+
 constexpr std::int64_t kPeriodNs = 1'000'000;  // 1 kHz pacing
 constexpr int kWarmupCycles = 300;
 

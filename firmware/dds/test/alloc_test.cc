@@ -13,8 +13,8 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/test_support/child_process.h"
 
+#include "alloc_counter.h"
 #include "dds_fixture.h"
-#include "malloc_counter.h"
 #include "test_types_traits.h"
 
 namespace hubrt::dds::test {
@@ -51,12 +51,12 @@ class Allocations : public DdsTest {
     Counts counts;
     for (int i = 0; i < kMeasured; ++i) {
       {
-        const ThreadAllocationCounter counter;
+        const hubrt::testing::AllocationScope counter;
         write(i);
         counts.write += counter.count();
       }
       {
-        const ThreadAllocationCounter counter;
+        const hubrt::testing::AllocationScope counter;
         take();
         counts.take += counter.count();
       }
