@@ -63,12 +63,10 @@ Expected<LiftLogic> LiftLogic::create(const LiftSettings& settings, const hal::B
   if (!client) {
     return make_error(client.error().code, fmt::format("lift: {}", client.error().message));
   }
-  // Before the worker thread starts: the Modbus client logs through spdlog's default logger from
-  // that thread, so spdlog's registry must exist before it (thread creation orders the two).
-  if (!log) log = spdlog::default_logger();
   auto worker = std::make_unique<LiftDriveWorker>(std::move(*client), clock, settings.poll_interval,
                                                   settings.drive_watchdog_ms);
-  return LiftLogic(settings, std::move(worker), describe(device->config), clock.now().mono, std::move(log));
+  return LiftLogic(settings, std::move(worker), describe(device->config), clock.now().mono,
+                   log ? std::move(log) : spdlog::default_logger());
 }
 
 LiftLogic::LiftLogic(LiftSettings settings, std::unique_ptr<LiftDriveWorker> worker, std::string endpoint,

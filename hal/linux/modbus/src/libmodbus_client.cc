@@ -34,7 +34,8 @@ LibmodbusClient::LibmodbusClient(ContextPtr ctx, std::string description, bool t
       clock_(clock),
       connected_(connected),
       next_attempt_(clock.now().mono + reconnect_interval),
-      log_next_connect_(!connected) {}
+      log_next_connect_(!connected),
+      log_(spdlog::default_logger()) {}
 
 Status LibmodbusClient::do_read_registers(RegisterKind kind, std::uint16_t address,
                                           std::span<std::uint16_t> out) noexcept {
@@ -104,15 +105,15 @@ Status LibmodbusClient::ready() noexcept {
   if (modbus_connect(ctx_.get()) == 0) {
     connected_ = true;
     flush_pending_ = false;
-    if (log_next_connect_) spdlog::info("{}: connected", description_);
+    if (log_next_connect_) log_->info("{}: connected", description_);
     log_next_connect_ = false;
     return Status::ok();
   }
   const int err = errno;
   disconnect(now + reconnect_interval_, true);
   if (err != last_logged_errno_) {
-    spdlog::warn("{}: cannot connect: {}; retrying at most every {} ms", description_, modbus_strerror(err),
-                 std::chrono::duration_cast<std::chrono::milliseconds>(reconnect_interval_).count());
+    log_->warn("{}: cannot connect: {}; retrying at most every {} ms", description_, modbus_strerror(err),
+               std::chrono::duration_cast<std::chrono::milliseconds>(reconnect_interval_).count());
     last_logged_errno_ = err;
   }
   return Status(ErrorCode::kUnavailable);
@@ -134,9 +135,9 @@ Status LibmodbusClient::failed(int err, const char* operation, std::uint16_t add
   }
   if (err != last_logged_errno_) {
     const std::string_view exception = modbus_exception_name(err);
-    spdlog::warn("{}: {} at address {} (count {}) failed: {}{}", description_, operation, address, count,
-                 exception.empty() ? std::string_view(modbus_strerror(err)) : exception,
-                 failure.connection_lost ? "; connection dropped, will reconnect" : "");
+    log_->warn("{}: {} at address {} (count {}) failed: {}{}", description_, operation, address, count,
+               exception.empty() ? std::string_view(modbus_strerror(err)) : exception,
+               failure.connection_lost ? "; connection dropped, will reconnect" : "");
     last_logged_errno_ = err;
   }
   return Status(failure.code);
@@ -144,7 +145,7 @@ Status LibmodbusClient::failed(int err, const char* operation, std::uint16_t add
 
 void LibmodbusClient::succeeded() noexcept {
   if (last_logged_errno_ != 0) {
-    spdlog::info("{}: requests succeed again", description_);
+    log_->info("{}: requests succeed again", description_);
     last_logged_errno_ = 0;
   }
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <modbus/modbus.h>
+#include <spdlog/logger.h>
 
 #include "hubrt/base/time.h"
 #include "hubrt/hal/modbus_client.h"
@@ -53,6 +54,9 @@ class LibmodbusClient final : public ModbusClient {
   bool flush_pending_ = false;
   bool log_next_connect_;      // after a loss, not after every resync
   int last_logged_errno_ = 0;  // log a failure once, until a success or a different failure
+  // Taken from the opening thread: the client is often called from a worker thread (the lift's),
+  // which must not be the first to touch spdlog's registry.
+  std::shared_ptr<spdlog::logger> log_;
   std::array<std::uint8_t, MODBUS_MAX_READ_BITS> bits_{};  // bit reads land here, no allocation
 };
 
