@@ -23,29 +23,30 @@ std::uint8_t level_of(runtime::Health health) noexcept {
 
 }  // namespace
 
-Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(const dds::Participant& participant,
-                                                                     const runtime::Hub& hub,
-                                                                     std::string hardware_id,
-                                                                     Duration interval,
-                                                                     Duration command_timeout) {
+Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(
+    const dds::Participant& participant, const runtime::Hub& hub, std::string hardware_id, Duration interval,
+    Duration command_timeout, const std::atomic<std::uint64_t>* log_lines_dropped) {
   auto topic = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, kDiagnosticsTopic);
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();
-  return std::unique_ptr<DiagnosticsStage>(new DiagnosticsStage(
-      std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval, command_timeout));
+  return std::unique_ptr<DiagnosticsStage>(new DiagnosticsStage(std::move(*topic), std::move(*writer), hub,
+                                                                std::move(hardware_id), interval,
+                                                                command_timeout, log_lines_dropped));
 }
 
 DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
                                    const runtime::Hub& hub, std::string hardware_id, Duration interval,
-                                   Duration command_timeout)
+                                   Duration command_timeout,
+                                   const std::atomic<std::uint64_t>* log_lines_dropped)
     : topic_(std::move(topic)),
       writer_(std::move(writer)),
       hub_(hub),
       hardware_id_(std::move(hardware_id)),
       interval_(interval),
       command_timeout_(command_timeout),
+      log_lines_dropped_(log_lines_dropped),
       statuses_(hub.nodes().size() + 1),
       wire_statuses_(hub.nodes().size() + 1) {
   for (std::size_t i = 0; i < statuses_.size(); ++i) {
@@ -93,6 +94,8 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("last_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.last_cycle).count());
   add("max_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.max_cycle).count());
   add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
+  if (log_lines_dropped_ != nullptr)
+    add("log_lines_dropped", log_lines_dropped_->load(std::memory_order_relaxed));
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);

@@ -49,27 +49,41 @@ Expected<void> apply_overrides(const AssemblyRequest& request, config::HubConfig
 
 }  // namespace
 
+Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
+  CheckedHub out;
+  auto board = hal::load_board(request.board_file);
+  if (!board) return std::move(board).error();
+  out.board = std::move(*board);
+  auto config = config::load_hub_config(request.hub_file);
+  if (!config) return std::move(config).error();
+  out.config = std::move(*config);
+  if (auto ok = apply_overrides(request, out.config); !ok) return std::move(ok).error();
+
+  const HubType* type = find_hub_type(out.config.type);
+  if (type == nullptr) {
+    return make_error(ErrorCode::kNotFound, fmt::format("{}: unknown hub type '{}' (this hubd knows: {})",
+                                                        out.config.file, out.config.type, known_hub_types()));
+  }
+  auto required = type->requirements(out.config);
+  if (!required) return std::move(required).error();
+  if (auto ok = hal::check_requirements(out.board, *required); !ok) return std::move(ok).error();
+  if (request.backend == BackendKind::kFake && !out.board.simulation) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: board {} has no simulation section: the fake backend cannot run it",
+                                  out.board.file, out.board.name));
+  }
+  return out;
+}
+
 Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock) {
   auto log = request.log ? request.log : spdlog::default_logger();
   auto out = std::make_unique<AssembledHub>();
 
-  auto board = hal::load_board(request.board_file);
-  if (!board) return std::move(board).error();
-  out->board = std::move(*board);
-  auto config = config::load_hub_config(request.hub_file);
-  if (!config) return std::move(config).error();
-  out->config = std::move(*config);
-  if (auto ok = apply_overrides(request, out->config); !ok) return std::move(ok).error();
-
+  auto checked = check_hub(request);
+  if (!checked) return std::move(checked).error();
+  out->board = std::move(checked->board);
+  out->config = std::move(checked->config);
   const HubType* type = find_hub_type(out->config.type);
-  if (type == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("{}: unknown hub type '{}' (this hubd knows: {})", out->config.file,
-                                  out->config.type, known_hub_types()));
-  }
-  auto required = type->requirements(out->config);
-  if (!required) return std::move(required).error();
-  if (auto ok = hal::check_requirements(out->board, *required); !ok) return std::move(ok).error();
 
   if (request.backend == BackendKind::kFake) {
     auto fake = hal::fake::FakeBackend::create(out->board, clock);
@@ -104,7 +118,7 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     const auto interval =
         std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / out->config.diagnostics_hz));
     auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval,
-                                                out->config.command_timeout);
+                                                out->config.command_timeout, request.log_lines_dropped);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
   }

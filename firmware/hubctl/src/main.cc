@@ -8,6 +8,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"hubctl — list, watch, command and measure hubs over DDS"};
   app.require_subcommand(1);
+  app.footer(hubrt::exit_codes::kHelpFooter);
   int exit_code = hubrt::hubctl::kExitOk;
   hubrt::hubctl::add_list_command(app, exit_code);
   hubrt::hubctl::add_echo_command(app, exit_code);
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // CLI11's own codes (105, 106, 109...) all mean "bad command line": the table's 2.
     const int code = app.exit(e);
     return code == 0 ? 0 : hubrt::hubctl::kExitUsage;
   }

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "hubrt/base/exit_codes.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
 #include "hubrt/dds/participant.h"
@@ -23,10 +24,10 @@ struct DomainOptions {
 };
 void add_domain_options(CLI::App& app, DomainOptions& options);
 
-// Exit codes shared by all commands.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailed = 1;  // the check failed, nothing received, ...
-inline constexpr int kExitUsage = 2;   // bad arguments, unknown topic or type
+// Exit codes shared by all commands: the table of hubrt/base/exit_codes.h, shared with hubd.
+inline constexpr int kExitOk = exit_codes::kOk;
+inline constexpr int kExitFailed = exit_codes::kFailure;  // the check failed, nothing received, ...
+inline constexpr int kExitUsage = exit_codes::kUsage;     // bad arguments, unknown topic or type
 
 // Set by SIGINT/SIGTERM; loops check it.
 bool stop_requested() noexcept;

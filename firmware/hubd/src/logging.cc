@@ -1,11 +1,14 @@
 #include "logging.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 
 #include <fmt/format.h>
 #include <spdlog/pattern_formatter.h>
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+
+#include "stderr_sink.h"
 
 namespace hubrt::hubd {
 namespace {
@@ -25,7 +28,13 @@ class SyslogPriorityFlag final : public spdlog::custom_flag_formatter {
   }
 };
 
+std::atomic<std::uint64_t> g_log_lines_dropped{0};
+
 }  // namespace
+
+const std::atomic<std::uint64_t>& log_lines_dropped() noexcept {
+  return g_log_lines_dropped;
+}
 
 Expected<std::shared_ptr<spdlog::logger>> make_logger(const std::string& name, const std::string& level) {
   const spdlog::level::level_enum parsed = spdlog::level::from_str(level);
@@ -34,9 +43,12 @@ Expected<std::shared_ptr<spdlog::logger>> make_logger(const std::string& name, c
         ErrorCode::kInvalidArgument,
         fmt::format("unknown log level '{}' (use trace, debug, info, warn, error, critical or off)", level));
   }
-  auto logger = spdlog::stderr_color_mt(name);
   const char* journal = std::getenv("JOURNAL_STREAM");  // NOLINT(concurrency-mt-unsafe): start-up only
-  if (journal != nullptr && *journal != '\0') {
+  const bool to_journal = journal != nullptr && *journal != '\0';
+  const bool colors = !to_journal && ::isatty(STDERR_FILENO) == 1;
+  auto logger =
+      std::make_shared<spdlog::logger>(name, std::make_shared<StderrSink>(colors, g_log_lines_dropped));
+  if (to_journal) {
     auto formatter = std::make_unique<spdlog::pattern_formatter>();
     formatter->add_flag<SyslogPriorityFlag>('*').set_pattern("%*%v");
     logger->set_formatter(std::move(formatter));

@@ -3,13 +3,18 @@
 //   hubd --board host-sim --hub dock_ecu              simulated Dock ECU on this machine
 //   hubd --board rpi4-dock-ecu                       the real thing (backend from the board)
 //   hubd --board host-sim --hub dock_ecu --check      validate the files and exit
+//
+// Exit statuses: hubrt/base/exit_codes.h. Every stop signal (runtime::stop_signals()) ends the
+// cycle, drives the outputs safe, then exits: 0 for SIGTERM/SIGINT, 128+N for signal N otherwise.
 #include <csignal>
+#include <cstring>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "hubrt/assembly/hub_assembly.h"
+#include "hubrt/base/exit_codes.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/runtime/cycle_runner.h"
@@ -34,19 +39,13 @@ struct Options {
   bool check_only = false;
 };
 
-// Exit codes: 0 clean stop, 1 runtime failure, 2 bad command line or configuration.
-constexpr int kExitRuntime = 1;
-constexpr int kExitConfig = 2;
+// The exit statuses are the table of hubrt/base/exit_codes.h, shared with hubctl.
+constexpr int kExitRuntime = exit_codes::kFailure;
+constexpr int kExitConfig = exit_codes::kUsage;
 
-const char* signal_name(int signal) {
-  switch (signal) {
-    case SIGINT:
-      return "SIGINT";
-    case SIGTERM:
-      return "SIGTERM";
-    default:
-      return "a signal";
-  }
+std::string signal_name(int signal) {
+  const char* abbreviation = sigabbrev_np(signal);  // glibc >= 2.32
+  return abbreviation != nullptr ? fmt::format("SIG{}", abbreviation) : fmt::format("signal {}", signal);
 }
 
 int fail(const std::string& message, int code) {
@@ -88,10 +87,6 @@ int run(const Options& options) {
   auto logger = make_logger("hubd", options.log_level);
   if (!logger) return fail(logger.error().message, kExitConfig);
 
-  // Before any thread exists: blocks SIGINT/SIGTERM for every thread DDS will start.
-  auto runner = runtime::CycleRunner::create();
-  if (!runner) return fail(runner.error().message, kExitRuntime);
-
   auto board_file = find_config_file("boards", options.board);
   if (!board_file) return fail(board_file.error().message, kExitConfig);
   std::string hub_name = options.hub;
@@ -115,6 +110,26 @@ int run(const Options& options) {
   request.name = options.name;
   request.rate_hz = options.rate_hz;
   request.log = *logger;
+  request.log_lines_dropped = &log_lines_dropped();
+  const auto describe = [&](const config::HubConfig& hub_config, const std::string& board_name) {
+    return fmt::format(
+        "hub '{}' ({}) on board '{}' with the {} backend, {} node(s), {:.1f} Hz, DDS domain {}",
+        hub_config.name, hub_config.type, board_name,
+        *backend == assembly::BackendKind::kFake ? "fake" : "linux", hub_config.nodes.size(),
+        hub_config.rate_hz, domain->domain_id);
+  };
+  if (options.check_only) {
+    // Files and requirements only: no backend (a real board would request its GPIO outputs), no
+    // DDS (it would join the network), no simulators.
+    auto checked = assembly::check_hub(request);
+    if (!checked) return fail(checked.error().message, kExitConfig);
+    spdlog::info("configuration OK: {}", describe(checked->config, checked->board.name));
+    return exit_codes::kOk;
+  }
+
+  // Before any thread exists: blocks the stop signals for every thread DDS will start.
+  auto runner = runtime::CycleRunner::create();
+  if (!runner) return fail(runner.error().message, kExitRuntime);
   request.waker = runner->waker();
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
@@ -125,16 +140,7 @@ int run(const Options& options) {
                                                ? kExitConfig
                                                : kExitRuntime);
   }
-  const auto& hub_config = (*assembled)->config;
-  const std::string summary =
-      fmt::format("hub '{}' ({}) on board '{}' with the {} backend, {} node(s), {:.1f} Hz, DDS domain {}",
-                  hub_config.name, hub_config.type, (*assembled)->board.name,
-                  *backend == assembly::BackendKind::kFake ? "fake" : "linux", hub_config.nodes.size(),
-                  hub_config.rate_hz, domain->domain_id);
-  if (options.check_only) {
-    spdlog::info("configuration OK: {}", summary);
-    return 0;
-  }
+  const std::string summary = describe((*assembled)->config, (*assembled)->board.name);
 
   SystemdNotifier systemd;
   spdlog::info("running {}", summary);
@@ -146,21 +152,31 @@ int run(const Options& options) {
 
   systemd.stopping();
   hub.enter_safe_state();
+  hub.report_safe_state(clock.now());
   if (!stopped) {
     spdlog::error("cycle failed: {}; outputs driven to their safe state", stopped.error().message);
     return kExitRuntime;
   }
   const runtime::CycleStats& stats = hub.stats();
-  spdlog::info("stopping on {}: outputs driven to their safe state after {} cycles ({} overruns)",
-               *stopped == runtime::StopReason::kSignal ? signal_name(runner->last_signal()) : "request",
-               stats.cycles, stats.overruns);
-  return 0;
+  const bool by_signal = *stopped == runtime::StopReason::kSignal;
+  const int signal = by_signal ? runner->last_signal() : 0;
+  const int status = by_signal ? exit_codes::for_stop_signal(signal) : exit_codes::kOk;
+  spdlog::info(
+      "stopping on {}: outputs driven to their safe state after {} cycles ({} overruns, {} log "
+      "lines dropped); exit status {}",
+      by_signal ? signal_name(signal) : "request", stats.cycles, stats.overruns, log_lines_dropped().load(),
+      status);
+  return status;
 }
 
 }  // namespace
 }  // namespace hubrt::hubd
 
 int main(int argc, char** argv) {
+  // A closed stdout/stderr (`hubd | head -1`, an SSH session gone) must never kill a hub: with
+  // SIGPIPE ignored, a write to a pipe without reader fails with EPIPE (pipe(7)), and the log sink
+  // drops and counts the line. Set before any thread exists, so it holds for all of them.
+  std::signal(SIGPIPE, SIG_IGN);
   hubrt::hubd::Options options;
   CLI::App app{"hubd — runs one hub: reads its devices, runs its nodes at a fixed rate, talks DDS"};
   app.add_option("--board", options.board, "Board name (file in the boards folder) or path to a board file")
@@ -178,7 +194,16 @@ int main(int argc, char** argv) {
   app.add_option("--rate", options.rate_hz, "Cycle and heartbeat rate in Hz, overriding the hub file's")
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
-  app.add_flag("--check", options.check_only, "Load and validate the board and hub files, then exit");
-  CLI11_PARSE(app, argc, argv);
+  app.add_flag("--check", options.check_only,
+               "Load and validate the board and hub files and the hub's needs against the board, then exit; "
+               "opens no device and no network");
+  app.footer(hubrt::exit_codes::kHelpFooter);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes (105 validation, 106 required, 109 extras...) mean "bad command line":
+    // the table's 2, which the systemd unit does not restart. --help exits 0.
+    return app.exit(e) == 0 ? hubrt::exit_codes::kOk : hubrt::exit_codes::kUsage;
+  }
   return hubrt::hubd::run(options);
 }

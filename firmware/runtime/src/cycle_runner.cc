@@ -34,6 +34,19 @@ void close_fd(int& fd) noexcept {
 
 }  // namespace
 
+sigset_t stop_signals() noexcept {
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (const int signal : {SIGHUP, SIGINT, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGTERM, SIGSTKFLT, SIGVTALRM,
+                           SIGPROF, SIGIO, SIGPWR, SIGXCPU, SIGXFSZ}) {
+    sigaddset(&signals, signal);
+  }
+  // SIGRTMIN is a function call in glibc: it leaves out the real-time signals the C library keeps
+  // for itself (thread cancellation, setxid), which must stay unblocked.
+  for (int signal = SIGRTMIN; signal <= SIGRTMAX; ++signal) sigaddset(&signals, signal);
+  return signals;
+}
+
 void Waker::wake() const noexcept {
   if (fd_ < 0) return;
   const std::uint64_t one = 1;
@@ -42,10 +55,7 @@ void Waker::wake() const noexcept {
 }
 
 Expected<CycleRunner> CycleRunner::create() {
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
+  const sigset_t signals = stop_signals();
   if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return system_error("pthread_sigmask");
   const int signal_fd = signalfd(-1, &signals, SFD_CLOEXEC | SFD_NONBLOCK);
   if (signal_fd < 0) return system_error("signalfd");

@@ -75,4 +75,8 @@ void Hub::enter_safe_state() noexcept {
   for (const auto& node : nodes_) node->enter_safe_state();
 }
 
+void Hub::report_safe_state(const Instant& now) noexcept {
+  for (const auto& stage : stages_) stage->after_safe_state(now);
+}
+
 }  // namespace hubrt::runtime

@@ -1,6 +1,8 @@
 #include "hubrt/runtime/cycle_runner.h"
 
 #include <atomic>
+#include <csignal>
+#include <cstring>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -101,6 +103,44 @@ TEST(CycleRunner, StopsOnSigterm) {
   ASSERT_TRUE(stopped);
   EXPECT_EQ(*stopped, StopReason::kSignal);
   EXPECT_EQ(runner->last_signal(), SIGTERM);
+}
+
+// Every catchable signal that would end the process ends run() instead, so that the caller drives
+// its outputs safe; old runners stopped on SIGINT/SIGTERM only and SIGHUP killed the process.
+TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
+  for (const int signal : {SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGRTMIN, SIGRTMAX}) {
+    auto runner = CycleRunner::create();
+    ASSERT_TRUE(runner);
+    Hub hub(HubOptions{"test", "hub", milliseconds(10), nullptr});
+    auto node = std::make_unique<CountingNode>();
+    CountingNode& counter = *node;
+    hub.add_node(std::move(node));
+    SystemClock clock;
+    std::thread sender([&] {
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (counter.publishes < 1 && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(milliseconds(1));
+      }
+      kill(getpid(), signal);  // blocked in every thread: only the signalfd sees it
+    });
+    auto stopped = runner->run(hub, clock);
+    sender.join();
+    ASSERT_TRUE(stopped) << strsignal(signal);
+    EXPECT_EQ(*stopped, StopReason::kSignal) << strsignal(signal);
+    EXPECT_EQ(runner->last_signal(), signal) << strsignal(signal);
+  }
+}
+
+// SIGPIPE is the caller's to ignore (a write then fails with EPIPE); faults stay deliverable to a
+// crash handler (blocked, they would kill the process without running it).
+TEST(CycleRunner, LeavesSigpipeAndFaultsOutOfTheStopSignals) {
+  const sigset_t set = stop_signals();
+  for (const int signal : {SIGPIPE, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGCHLD, SIGWINCH}) {
+    EXPECT_EQ(sigismember(&set, signal), 0) << strsignal(signal);
+  }
+  for (const int signal : {SIGHUP, SIGINT, SIGTERM, SIGQUIT, SIGUSR1, SIGUSR2, SIGPWR}) {
+    EXPECT_EQ(sigismember(&set, signal), 1) << strsignal(signal);
+  }
 }
 
 }  // namespace

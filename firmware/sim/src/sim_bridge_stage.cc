@@ -128,4 +128,16 @@ void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*to
   dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced next cycle
 }
 
+void SimBridgeStage::after_safe_state(const Instant& now) noexcept {
+  after_nodes(now, /*publish_all=*/true, /*took_effect=*/false);
+  // The writer is reliable, but Cyclone's writer linger "is currently not applied when Cyclone DDS
+  // is requested to terminate" (docs/manual/config.rst, Lingering writers): wait for the readers'
+  // acknowledgements (dds_wait_for_acks, dds.h) before hubd deletes its participant. Bounded, and
+  // off the cycle: the outputs are already safe, this only tells the watchers.
+  constexpr dds_duration_t kAckTimeout = DDS_MSECS(500);
+  if (dds_wait_for_acks(dds_.signals_writer.handle(), kAckTimeout) != DDS_RETCODE_OK) {
+    log_->warn("sim bridge: the last signals sample was not acknowledged within 500 ms");
+  }
+}
+
 }  // namespace hubrt::sim

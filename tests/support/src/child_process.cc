@@ -151,7 +151,7 @@ std::string ExitStatus::describe() const {
 }
 
 Expected<ChildProcess> ChildProcess::start(const std::string& program, const std::vector<std::string>& args,
-                                           const Environment& extra_env) {
+                                           const Environment& extra_env, OutputMode output) {
   // qemu-user runs posix_spawn's vfork as a plain fork, so an exec that fails in the child looks
   // like a successful start: check what can be checked before spawning.
   const bool search_path = program.find('/') == std::string::npos;
@@ -192,10 +192,23 @@ Expected<ChildProcess> ChildProcess::start(const std::string& program, const std
 
   SpawnSetup setup;
   posix_spawn_file_actions_addopen(&setup.actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&setup.actions, STDOUT_FILENO, out_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&setup.actions, STDERR_FILENO, err_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::array<int, 2> pipe_fds{-1, -1};
+  if (output == OutputMode::kClosedPipe) {
+    if (::pipe2(pipe_fds.data(), O_CLOEXEC) != 0) {
+      const int err = errno;
+      std::filesystem::remove_all(dir, ec);
+      return make_error(ErrorCode::kIo, "start '" + program + "': pipe: " + errno_text(err));
+    }
+    // dup2 clears close-on-exec on the copies; the originals close at exec.
+    posix_spawn_file_actions_adddup2(&setup.actions, pipe_fds[1], STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&setup.actions, pipe_fds[1], STDERR_FILENO);
+    ::close(pipe_fds[0]);  // no reader, from the start
+  } else {
+    posix_spawn_file_actions_addopen(&setup.actions, STDOUT_FILENO, out_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&setup.actions, STDERR_FILENO, err_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
   // The child starts with no blocked signals and default dispositions for the ones tests send,
   // whatever the test runner set up for itself.
   sigset_t empty;
@@ -212,6 +225,7 @@ Expected<ChildProcess> ChildProcess::start(const std::string& program, const std
       to_spawn.find('/') == std::string::npos
           ? ::posix_spawnp(&pid, to_spawn.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data())
           : ::posix_spawn(&pid, to_spawn.c_str(), &setup.actions, &setup.attr, argv.data(), envp.data());
+  if (pipe_fds[1] >= 0) ::close(pipe_fds[1]);
   if (rc != 0) {
     std::filesystem::remove_all(dir, ec);
     return make_error(ErrorCode::kIo, "start '" + program + "': " + errno_text(rc));

@@ -2,6 +2,8 @@
 // (what runs on it), on the chosen HAL backend, joined to a DDS domain.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,7 +38,22 @@ struct AssemblyRequest {
   std::optional<double> rate_hz;        // overrides the configured rate
   std::shared_ptr<spdlog::logger> log;  // defaults to spdlog's default logger
   runtime::Waker waker;
+  // Log lines the process could not write (stderr closed), published in /diagnostics as
+  // log_lines_dropped when set. Must outlive the assembled hub.
+  const std::atomic<std::uint64_t>* log_lines_dropped = nullptr;
 };
+
+// What `hubd --check` validates: both files, loaded, with the overrides applied.
+struct CheckedHub {
+  hal::BoardConfig board;
+  config::HubConfig config;
+};
+
+// Loads and checks both files and the overrides, finds the hub type and checks that the board
+// provides every signal, bus and device the configured nodes need. Touches no device and no
+// network (no backend, no DDS): what `hubd --check` runs. Errors name the file and line:
+// kInvalidArgument / kNotFound / kFailedPrecondition, all configuration errors.
+Expected<CheckedHub> check_hub(const AssemblyRequest& request);
 
 // Destroyed in reverse order of the members: the hub (nodes, their devices and DDS endpoints)
 // goes before the subscriptions, then the participant, then the backend.
@@ -50,9 +67,8 @@ struct AssembledHub {
   std::unique_ptr<runtime::Hub> hub;
 };
 
-// Loads and checks both files, checks the board provides what the hub needs, opens the backend,
-// joins the domain and builds the nodes. Errors name the file and line, the device or the topic.
-// `clock` drives the fake backend's simulators and must outlive the result.
+// check_hub(), then opens the backend, joins the domain and builds the nodes. Errors name the file and line,
+// the device or the topic. `clock` drives the fake backend's simulators and must outlive the result.
 Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock);
 
 }  // namespace hubrt::assembly

@@ -1,6 +1,8 @@
 // Runs a Hub in real time: periodic cycles on absolute deadlines of CLOCK_MONOTONIC (a timerfd, so
 // lateness never accumulates into drift), command steps as soon as a transport calls wake(), and a
-// clean stop on SIGINT/SIGTERM (read from a signalfd, so no handler runs inside the cycle).
+// clean stop on every signal whose default action ends the process and that can be blocked
+// (stop_signals(): read from a signalfd, so no handler runs inside the cycle and the caller gets
+// to drive its outputs safe before it exits).
 #pragma once
 
 #include <csignal>
@@ -30,10 +32,23 @@ struct RunHooks {
 
 enum class StopReason : std::uint8_t { kSignal, kRequested };
 
+// The signals CycleRunner turns into a clean stop: every signal whose default action terminates
+// the process (signal(7)) and that another process or the kernel sends asynchronously — SIGHUP,
+// SIGINT, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGTERM, SIGSTKFLT, SIGVTALRM, SIGPROF, SIGIO,
+// SIGPWR, SIGXCPU, SIGXFSZ and the real-time signals SIGRTMIN..SIGRTMAX. Left out on purpose:
+// SIGKILL/SIGSTOP (cannot be caught), SIGPIPE (a program that must not die of a closed pipe
+// ignores it, so that the write fails with EPIPE instead), and the faults a thread raises on itself
+// (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS): a blocked synchronous fault is
+// fatal at once without running any handler (kernel force_sig_fault), so they stay unblocked for a
+// crash handler.
+sigset_t stop_signals() noexcept;
+
 class CycleRunner {
  public:
-  // Blocks SIGINT and SIGTERM for the calling thread — call it before starting any other thread
-  // (DDS participants) so that they inherit the mask — and opens the timer, event and signal fds.
+  // Blocks stop_signals() for the calling thread — call it before starting any other thread
+  // (DDS participants) so that they inherit the mask, or such a signal could be delivered to a
+  // thread that still has its default action, ending the process at once — and opens the timer,
+  // event and signal fds.
   // Errors: kIo with the failing system call named.
   static Expected<CycleRunner> create();
   CycleRunner(CycleRunner&& other) noexcept;
@@ -49,6 +64,7 @@ class CycleRunner {
   // at once. Each periodic deadline missed while a cycle ran late counts as an overrun in
   // hub.stats(). Errors: kInvalidArgument for a non-positive period; kIo for a failing system call.
   Expected<StopReason> run(Hub& hub, const Clock& clock, const RunHooks& hooks = {});
+  // The signal that ended the last run() (one of stop_signals()), 0 if none did.
   [[nodiscard]] int last_signal() const noexcept { return last_signal_; }
 
  private:

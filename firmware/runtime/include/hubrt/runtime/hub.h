@@ -26,6 +26,9 @@ class CycleStage {
   // After the nodes stepped. `publish_all`: this is a periodic cycle; `took_effect`: some node's
   // command took effect. E.g. assemble and publish the hub State.
   virtual void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept = 0;
+  // Once, after the nodes entered their safe state on the way out: e.g. the simulation bridge
+  // publishes the outputs a last time, so that watchers see them safe.
+  virtual void after_safe_state(const Instant& /*now*/) noexcept {}
 };
 
 struct CycleStats {
@@ -66,6 +69,8 @@ class Hub {
   void count_overruns(std::uint64_t missed) noexcept { stats_.overruns += missed; }
   // Drives every node's outputs to its safe state (shutdown).
   void enter_safe_state() noexcept;
+  // After enter_safe_state(), on the way out: lets every stage report the safe state at `now`.
+  void report_safe_state(const Instant& now) noexcept;
 
   [[nodiscard]] const HubOptions& options() const noexcept { return options_; }
   [[nodiscard]] const CycleStats& stats() const noexcept { return stats_; }

@@ -39,6 +39,8 @@ class SimBridgeStage final : public runtime::CycleStage {
 
   void before_nodes(const Instant& now) noexcept override;
   void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
+  // Publishes the signals once more, after the hub drove its outputs safe on the way out.
+  void after_safe_state(const Instant& now) noexcept override;
 
   // Applies one input change as if it came over DDS. Returns false (and logs) for a signal that
   // is not a simulated input of this board.

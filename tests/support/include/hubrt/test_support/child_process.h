@@ -1,6 +1,7 @@
 // Starting a program (hubd, a probe) from a test, watching its output and stopping it.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +26,13 @@ struct ExitStatus {
   [[nodiscard]] std::string describe() const;
 };
 
+// Where a child's stdout and stderr go.
+enum class OutputMode : std::uint8_t {
+  kFiles,       // files in a private directory (stdout_text(), stderr_text())
+  kClosedPipe,  // a pipe whose reading end is closed before the child runs: every write to them
+                // fails (EPIPE, and SIGPIPE unless the child ignores it), as for `prog | head -0`
+};
+
 // A child process whose stdout and stderr go to files in a private temporary directory (files,
 // not pipes, so a chatty child never blocks on a full pipe and the output survives for the
 // failure message). stdin is /dev/null. Move-only.
@@ -44,8 +52,10 @@ class ChildProcess {
   // Errors: kIo naming the program when a path is not an executable file (checked before
   // spawning: under qemu-user a failed exec would look like a successful start), the output
   // directory cannot be made or spawning fails.
+  // `output`: see OutputMode (with kClosedPipe the output texts stay empty).
   static Expected<ChildProcess> start(const std::string& program, const std::vector<std::string>& args,
-                                      const Environment& extra_env = {});
+                                      const Environment& extra_env = {},
+                                      OutputMode output = OutputMode::kFiles);
 
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
