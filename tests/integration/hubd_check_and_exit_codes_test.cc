@@ -113,6 +113,35 @@ TEST_F(HubdCheckTest, StillRefusesAHubTheBoardCannotCarry) {
   EXPECT_NE(f.output.find("rsp.no_such_valve"), std::string::npos) << f.output;
 }
 
+// And what building the nodes would refuse, checked without building them: a hub-layout node name
+// the hub's messages have no field for, a subscription of the wrong message type.
+TEST_F(HubdCheckTest, StillRefusesWhatBuildingTheNodesWouldRefuse) {
+  struct Case {
+    std::string hub;
+    std::string from;
+    std::string to;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"dock_ecu",
+       "layout: node_type\nnodes:\n  dock:", "layout: hub\nnodes:\n  dok:", "has no field for node 'dok'"},
+      {"rsp_ecu", "type: hub_msgs/msg/DockState", "type: hub_msgs/msg/RspState",
+       "input 'dock' must be a hub_msgs/msg/DockState, not hub_msgs/msg/RspState"},
+  };
+  for (const Case& c : cases) {
+    std::string hub = read_text(fs::path(HUBRT_SOURCE_DIR) / "hubs" / c.hub / (c.hub + ".yaml"));
+    ASSERT_NE(hub.find(c.from), std::string::npos) << "the test's assumption about " << c.hub << ".yaml";
+    hub.replace(hub.find(c.from), c.from.size(), c.to);
+    const fs::path path = dir_ / (c.hub + ".yaml");
+    std::ofstream(path) << hub;
+    const Finished f =
+        run_program(HUBRT_HUBD_PATH, {"--board", "host-sim", "--hub", path.string(), "--check"});
+    EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage)) << c.hub << ": " << f.status.describe() << "\n"
+                                                          << f.output;
+    EXPECT_NE(f.output.find(c.message), std::string::npos) << f.output;
+  }
+}
+
 // hubd's command-line errors: CLI11 says 105/106/109 on its own; the table says 2, the status the
 // unit does not restart.
 TEST(HubdExitCodes, CommandLineErrorsAreUsageErrors) {

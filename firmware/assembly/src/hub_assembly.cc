@@ -67,6 +67,7 @@ Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
   auto required = type->requirements(out.config);
   if (!required) return std::move(required).error();
   if (auto ok = hal::check_requirements(out.board, *required); !ok) return std::move(ok).error();
+  if (auto ok = type->check(out.config); !ok) return std::move(ok).error();
   if (request.backend == BackendKind::kFake && !out.board.simulation) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: board {} has no simulation section: the fake backend cannot run it",

@@ -31,10 +31,10 @@ class SubscriptionStage final : public runtime::CycleStage {
 
 }  // namespace
 
-Expected<Subscriptions::Found> Subscriptions::prepare(std::string_view name,
-                                                      const msgs::TypeInfo& expected) const {
+Expected<Subscriptions::Found> Subscriptions::find(const config::HubConfig& config, std::string_view name,
+                                                   const msgs::TypeInfo& expected) {
   const config::Subscription* sub = nullptr;
-  for (const auto& s : config_.subscriptions) {
+  for (const auto& s : config.subscriptions) {
     if (s.name == name) sub = &s;
   }
   if (sub == nullptr) {
@@ -42,19 +42,19 @@ Expected<Subscriptions::Found> Subscriptions::prepare(std::string_view name,
         ErrorCode::kInvalidArgument,
         fmt::format("{}: this hub needs the State of another hub as input '{}' ({}); add it under "
                     "subscriptions: with its topic and type",
-                    config_.file, name, expected.ros_name));
+                    config.file, name, expected.ros_name));
   }
   const msgs::TypeInfo* type = msgs::all_types().find(sub->type);
   if (type == nullptr || type->descriptor == nullptr) {
     return make_error(
         ErrorCode::kInvalidArgument,
-        fmt::format("{}: subscriptions.{}.type: unknown message type '{}'", config_.file, name, sub->type));
+        fmt::format("{}: subscriptions.{}.type: unknown message type '{}'", config.file, name, sub->type));
   }
   Found found{sub->name, sub->topic, sub->timeout, type->descriptor, 0};
   if (sub->field.empty()) {
     if (type != &expected) {
       return make_error(ErrorCode::kInvalidArgument,
-                        fmt::format("{}: subscriptions.{}: input '{}' must be a {}, not {}", config_.file,
+                        fmt::format("{}: subscriptions.{}: input '{}' must be a {}, not {}", config.file,
                                     name, name, expected.ros_name, type->ros_name));
     }
     return found;
@@ -66,7 +66,7 @@ Expected<Subscriptions::Found> Subscriptions::prepare(std::string_view name,
     }
   }
   return make_error(ErrorCode::kInvalidArgument,
-                    fmt::format("{}: subscriptions.{}.field: {} has no field '{}' of type {}", config_.file,
+                    fmt::format("{}: subscriptions.{}.field: {} has no field '{}' of type {}", config.file,
                                 name, type->ros_name, sub->field, expected.ros_name));
 }
 

@@ -30,6 +30,14 @@ class DockEcuHubType final : public assembly::HubType {
     return required;
   }
 
+  [[nodiscard]] Expected<void> check(const config::HubConfig& config) const override {
+    for (const config::NodeConfig& node : config.nodes) {
+      auto wired = assembly::NodeWiring<DockEcuTypes>::check<DockLogic>(config, node);
+      if (!wired) return wired;
+    }
+    return {};
+  }
+
   [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
     auto wiring = assembly::NodeWiring<DockEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();

@@ -41,6 +41,18 @@ class RspEcuHubType final : public assembly::HubType {
     return required;
   }
 
+  [[nodiscard]] Expected<void> check(const config::HubConfig& config) const override {
+    for (const config::NodeConfig& node : config.nodes) {
+      auto settings = parse_rsp_settings(node);
+      if (!settings) return std::move(settings).error();
+      auto dock = assembly::Subscriptions::check<dock_ecu::DockState>(config, settings->dock_subscription);
+      if (!dock) return dock;
+      auto wired = assembly::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
+      if (!wired) return wired;
+    }
+    return {};
+  }
+
   [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
     auto wiring = assembly::NodeWiring<RspEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();

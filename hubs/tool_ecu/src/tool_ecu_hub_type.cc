@@ -54,6 +54,23 @@ class ToolEcuHubType final : public assembly::HubType {
     return required;
   }
 
+  [[nodiscard]] Expected<void> check(const config::HubConfig& config) const override {
+    for (const config::NodeConfig& node : config.nodes) {
+      Expected<void> wired;
+      if (node.type == SmartToolLogic::kType) {
+        auto settings = parse_smart_tool_settings(node);
+        if (!settings) return std::move(settings).error();
+        auto rsp = assembly::Subscriptions::check<hub_msgs_msg_dds__RspState_>(config, settings->robot_state);
+        if (!rsp) return in_node(node, rsp.error());
+        wired = assembly::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
+      } else {
+        wired = assembly::NodeWiring<ToolEcuTypes>::check<LiftLogic>(config, node);
+      }
+      if (!wired) return wired;
+    }
+    return {};
+  }
+
   [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
     auto wiring = assembly::NodeWiring<ToolEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();

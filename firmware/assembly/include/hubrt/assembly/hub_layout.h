@@ -190,6 +190,22 @@ class NodeWiring {
   using HubCommand = typename HubTypes::Command;
   using HubState = typename HubTypes::State;
 
+  // What add() checks of node `node` in the configuration alone (hub layout: the hub-level
+  // messages have a field `node.name` of Logic's types), without DDS (`hubd --check`).
+  // Errors: as add().
+  template <runtime::NodeLogic Logic>
+  static Expected<void> check(const config::HubConfig& config, const config::NodeConfig& node) {
+    if (config.layout != config::Layout::kHub) return {};
+    auto command_offset =
+        detail::struct_field_offset(msgs::type_info_of<HubCommand>(), node.name,
+                                    msgs::type_info_of<typename Logic::Command>(), config.file);
+    if (!command_offset) return std::move(command_offset).error();
+    auto state_offset = detail::struct_field_offset(msgs::type_info_of<HubState>(), node.name,
+                                                    msgs::type_info_of<typename Logic::State>(), config.file);
+    if (!state_offset) return std::move(state_offset).error();
+    return {};
+  }
+
   // Errors: the hub-level DDS entities (hub layout only).
   static Expected<NodeWiring> create(const HubContext& context, runtime::Hub& hub) {
     NodeWiring wiring(context, hub);

@@ -44,6 +44,10 @@ class HubType {
   // there (file:line, what is wrong) come from here, before anything is opened.
   [[nodiscard]] virtual Expected<hal::BoardRequirements> requirements(
       const config::HubConfig& config) const = 0;
+  // The rest of what build() would refuse in the configuration alone — message types of the
+  // subscriptions, the hub layout's fields — without opening any device or joining DDS (what
+  // `hubd --check` runs after requirements()). Errors: as build(), file and line.
+  [[nodiscard]] virtual Expected<void> check(const config::HubConfig& /*config*/) const { return {}; }
   // Opens the devices and DDS endpoints and adds the nodes to `hub`. Errors name the node and the
   // device or topic that failed.
   [[nodiscard]] virtual Expected<void> build(const HubContext& context, runtime::Hub& hub) const = 0;

@@ -39,6 +39,15 @@ class Subscriptions {
     return typed;
   }
 
+  // What get<T>(name) checks in the configuration alone — the subscription exists, its type is
+  // T or holds a T in `field:` — without DDS (`hubd --check`). Errors: as get().
+  template <class T>
+  static Expected<void> check(const config::HubConfig& config, std::string_view name) {
+    auto found = find(config, name, msgs::type_info_of<T>());
+    if (!found) return std::move(found).error();
+    return {};
+  }
+
   // A CycleStage that takes the received States before the nodes step. Add it to the hub after
   // the nodes asked for their subscriptions; nullptr when there are none.
   std::unique_ptr<runtime::CycleStage> make_stage();
@@ -57,7 +66,11 @@ class Subscriptions {
     std::optional<dds::UntypedReader> reader;
   };
 
-  Expected<Found> prepare(std::string_view name, const msgs::TypeInfo& expected) const;
+  static Expected<Found> find(const config::HubConfig& config, std::string_view name,
+                              const msgs::TypeInfo& expected);
+  Expected<Found> prepare(std::string_view name, const msgs::TypeInfo& expected) const {
+    return find(config_, name, expected);
+  }
   Expected<void> add(std::unique_ptr<RemoteStateBase> state, const Found& found);
 
   const config::HubConfig& config_;
