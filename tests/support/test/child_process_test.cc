@@ -41,6 +41,24 @@ TEST(ChildProcess, ReportsExitCode) {
   EXPECT_FALSE(status->term_signal.has_value());
 }
 
+// OutputMode::kClosedPipe: writing ends the child with SIGPIPE unless it ignores it, then the
+// write fails with EPIPE ("write error" from the shell's echo, which itself goes nowhere).
+TEST(ChildProcess, AClosedPipeOutputFailsEveryWrite) {
+  auto killed = ChildProcess::start("/bin/sh", {"-c", "echo lost"}, {}, OutputMode::kClosedPipe);
+  ASSERT_TRUE(killed) << killed.error().message;
+  auto status = killed->wait(kStartup);
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_TRUE(status->killed_by(SIGPIPE)) << status->describe();
+
+  auto ignoring = ChildProcess::start("/bin/sh", {"-c", "trap '' PIPE; echo lost || exit 7; exit 0"}, {},
+                                      OutputMode::kClosedPipe);
+  ASSERT_TRUE(ignoring) << ignoring.error().message;
+  status = ignoring->wait(kStartup);
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_TRUE(status->exited_with(7)) << status->describe();
+  EXPECT_EQ(ignoring->stdout_text(), "");
+}
+
 TEST(ChildProcess, PassesExtraEnvironmentAndOverridesExistingVariables) {
   auto child = ChildProcess::start("/bin/sh", {"-c", "echo \"$HUBRT_CHILD_TEST|$HOME\""},
                                    {{"HUBRT_CHILD_TEST", "hello"}, {"HOME", "/nowhere"}});
