@@ -171,10 +171,10 @@ TEST_P(HubdExitSignalsTest, DrivesTheOutputsSafeThenExitsWithTheDocumentedStatus
   auto status = hub_->process().wait(kPatience);
   ASSERT_TRUE(status) << status.error().message;
   EXPECT_TRUE(status->exited_with(exit_codes::for_stop_signal(signal)))
-      << strsignal(signal) << ": " << status->describe() << "\n"
+      << sigdescr_np(signal) << ": " << status->describe() << "\n"
       << hub_->output();
   EXPECT_EQ(last_lock_valve_level(), std::optional<bool>(false))
-      << strsignal(signal) << ": the last outputs published are not safe\n"
+      << sigdescr_np(signal) << ": the last outputs published are not safe\n"
       << hub_->output();
   EXPECT_NE(hub_->output().find(
                 fmt::format("stopping on SIG{}: outputs driven to their safe state", sigabbrev_np(signal))),

@@ -125,9 +125,9 @@ TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
     });
     auto stopped = runner->run(hub, clock);
     sender.join();
-    ASSERT_TRUE(stopped) << strsignal(signal);
-    EXPECT_EQ(*stopped, StopReason::kSignal) << strsignal(signal);
-    EXPECT_EQ(runner->last_signal(), signal) << strsignal(signal);
+    ASSERT_TRUE(stopped) << sigdescr_np(signal);
+    EXPECT_EQ(*stopped, StopReason::kSignal) << sigdescr_np(signal);
+    EXPECT_EQ(runner->last_signal(), signal) << sigdescr_np(signal);
   }
 }
 
@@ -136,10 +136,10 @@ TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
 TEST(CycleRunner, LeavesSigpipeAndFaultsOutOfTheStopSignals) {
   const sigset_t set = stop_signals();
   for (const int signal : {SIGPIPE, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGCHLD, SIGWINCH}) {
-    EXPECT_EQ(sigismember(&set, signal), 0) << strsignal(signal);
+    EXPECT_EQ(sigismember(&set, signal), 0) << sigdescr_np(signal);
   }
   for (const int signal : {SIGHUP, SIGINT, SIGTERM, SIGQUIT, SIGUSR1, SIGUSR2, SIGPWR}) {
-    EXPECT_EQ(sigismember(&set, signal), 1) << strsignal(signal);
+    EXPECT_EQ(sigismember(&set, signal), 1) << sigdescr_np(signal);
   }
 }
 
