@@ -53,6 +53,8 @@ void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& h
       if (const auto it = values.find("period_ms"); it != values.end()) d.period_ms = number(it->second);
       if (const auto it = values.find("command_timeout_ms"); it != values.end())
         d.command_timeout_ms = number(it->second);
+      if (const auto it = values.find("immediate_state_interval_ms"); it != values.end())
+        d.immediate_state_interval_ms = number(it->second);
     } else if (const auto node_type = values.find("node_type"); node_type != values.end()) {
       hubs[hub].node_types[part] = node_type->second;
     }

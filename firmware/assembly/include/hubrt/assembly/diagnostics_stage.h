@@ -22,15 +22,18 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 10;
+  static constexpr std::size_t kMaxValues = 12;
 
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as
-  // `hubctl conformance` learn the watchdog's timeout from the wire.
+  // `hubctl conformance` learn the watchdog's timeout from the wire; likewise a positive
+  // `immediate_state_interval` (key immediate_state_interval_ms), the budget of immediate States,
+  // so that a tool measuring echo latency spaces its changes by at least that much.
   // Errors: the DDS topic or writer that could not be created.
   static Expected<std::unique_ptr<DiagnosticsStage>> create(const dds::Participant& participant,
                                                             const runtime::Hub& hub, std::string hardware_id,
-                                                            Duration interval, Duration command_timeout = {});
+                                                            Duration interval, Duration command_timeout = {},
+                                                            Duration immediate_state_interval = {});
 
   void before_nodes(const Instant& /*now*/) noexcept override {}
   void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
@@ -48,7 +51,8 @@ class DiagnosticsStage final : public runtime::CycleStage {
 
   DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer, const runtime::Hub& hub,
-                   std::string hardware_id, Duration interval, Duration command_timeout);
+                   std::string hardware_id, Duration interval, Duration command_timeout,
+                   Duration immediate_state_interval);
   void fill_hub_status(const Instant& now) noexcept;
   void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
   void set_value(std::size_t status, std::size_t slot, const char* key,
@@ -60,6 +64,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
   std::string hardware_id_;
   Duration interval_;
   Duration command_timeout_;
+  Duration immediate_state_interval_;
   Time next_due_{};
   bool started_ = false;
   Time started_at_{};

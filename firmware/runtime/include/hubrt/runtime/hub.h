@@ -1,7 +1,8 @@
 // A hub: its nodes and the fixed-rate cycle over them. Each cycle: every node takes its
 // commands, reads inputs, runs its logic, writes outputs, rebuilds its State — then every State
 // is published (the heartbeat). A command that arrives between cycles triggers the same step at
-// once and publishes only the States whose command took effect.
+// once and publishes only the States whose command took effect, within each node's budget of
+// immediate States (ImmediateStateBudget; a change held back goes out with the next State).
 #pragma once
 
 #include <cstdint>
@@ -26,6 +27,8 @@ class CycleStage {
   // After the nodes stepped. `publish_all`: this is a periodic cycle; `took_effect`: some node's
   // command took effect. E.g. assemble and publish the hub State.
   virtual void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept = 0;
+  // Immediate States this stage held back for its budget (the hub layout's hub State).
+  [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept { return 0; }
 };
 
 struct CycleStats {
@@ -71,6 +74,8 @@ class Hub {
   [[nodiscard]] const CycleStats& stats() const noexcept { return stats_; }
   [[nodiscard]] const std::vector<std::unique_ptr<NodeBase>>& nodes() const noexcept { return nodes_; }
   [[nodiscard]] NodeBase* find_node(std::string_view name) const noexcept;
+  // Immediate States held back by every node's and stage's budget, since start.
+  [[nodiscard]] std::uint64_t states_deferred() const noexcept;
 
  private:
   void step(const Instant& now, bool publish_all) noexcept;
