@@ -11,6 +11,8 @@
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
 
+#include "sample_decoder.h"
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -74,12 +76,14 @@ Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& partic
   auto reader = dds::UntypedReader::create(participant, *topic);
   if (!reader) return std::move(reader).error();
   dds::UntypedSample sample(*type->descriptor);
+  SampleDecoder decoder("hubctl", std::string(kDiagnosticsTopic));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline && !complete(hubs, wanted)) {
     const Result<bool> taken = reader->take_next(sample.data());
     if (!taken.is_ok()) break;
     if (taken.value()) {
-      absorb_diagnostics(msgs::to_json(*type, sample.data()), hubs);
+      // A sample that cannot be read is reported and skipped; the others still count.
+      if (auto value = decoder.decode(*type, sample.data())) absorb_diagnostics(*value, hubs);
       continue;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
