@@ -25,20 +25,21 @@ std::uint8_t level_of(runtime::Health health) noexcept {
 
 Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(
     const dds::Participant& participant, const runtime::Hub& hub, std::string hardware_id, Duration interval,
-    Duration command_timeout, const std::atomic<std::uint64_t>* log_lines_dropped) {
+    Duration command_timeout, Duration immediate_state_interval,
+    const std::atomic<std::uint64_t>* log_lines_dropped) {
   auto topic = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, kDiagnosticsTopic);
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();
-  return std::unique_ptr<DiagnosticsStage>(new DiagnosticsStage(std::move(*topic), std::move(*writer), hub,
-                                                                std::move(hardware_id), interval,
-                                                                command_timeout, log_lines_dropped));
+  return std::unique_ptr<DiagnosticsStage>(
+      new DiagnosticsStage(std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval,
+                           command_timeout, immediate_state_interval, log_lines_dropped));
 }
 
 DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
                                    const runtime::Hub& hub, std::string hardware_id, Duration interval,
-                                   Duration command_timeout,
+                                   Duration command_timeout, Duration immediate_state_interval,
                                    const std::atomic<std::uint64_t>* log_lines_dropped)
     : topic_(std::move(topic)),
       writer_(std::move(writer)),
@@ -46,6 +47,7 @@ DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__Diagnosti
       hardware_id_(std::move(hardware_id)),
       interval_(interval),
       command_timeout_(command_timeout),
+      immediate_state_interval_(immediate_state_interval),
       log_lines_dropped_(log_lines_dropped),
       statuses_(hub.nodes().size() + 1),
       wire_statuses_(hub.nodes().size() + 1) {
@@ -88,9 +90,13 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("period_ms", period_ms);
   add("rate_hz", 1e3 / period_ms);
   if (command_timeout_ > Duration::zero()) add("command_timeout_ms", to_seconds(command_timeout_) * 1e3);
+  if (immediate_state_interval_ > Duration::zero())
+    add("immediate_state_interval_ms", to_seconds(immediate_state_interval_) * 1e3);
   add("cycles", stats.cycles);
   add("command_steps", stats.command_steps);
   add("overruns", stats.overruns);
+  // Changes whose immediate State the budget held back (a planner flipping its command too fast).
+  add("states_deferred", hub_.states_deferred());
   add("last_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.last_cycle).count());
   add("max_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.max_cycle).count());
   add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
@@ -119,6 +125,7 @@ void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBa
   add("node_type", node.type());
   add("states_published", node.published());
   add("commands_rejected", node.rejected());
+  add("states_deferred", node.states_deferred());
   wire_statuses_[index].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[index].level = level_of(health);
 }

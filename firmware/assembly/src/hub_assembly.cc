@@ -118,8 +118,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   if (out->config.diagnostics_hz > 0) {
     const auto interval =
         std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / out->config.diagnostics_hz));
-    auto diagnostics = DiagnosticsStage::create(*out->participant, *out->hub, out->board.name, interval,
-                                                out->config.command_timeout, request.log_lines_dropped);
+    auto diagnostics = DiagnosticsStage::create(
+        *out->participant, *out->hub, out->board.name, interval, out->config.command_timeout,
+        out->config.immediate_state_interval, request.log_lines_dropped);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
   }

@@ -75,8 +75,8 @@ bool is_ros_name_token(std::string_view name) noexcept {
 }
 
 Expected<HubConfig> parse_hub_config(const YamlMap& root) {
-  if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "layout", "namespace",
-                                "diagnostics_hz", "nodes", "subscriptions"});
+  if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "immediate_state_interval_ms",
+                                "layout", "namespace", "diagnostics_hz", "nodes", "subscriptions"});
       !ok) {
     return std::move(ok).error();
   }
@@ -104,6 +104,12 @@ Expected<HubConfig> parse_hub_config(const YamlMap& root) {
                                      "jitter would trip the watchdog",
                                      *timeout, 2e3 / *rate, *rate));
   }
+
+  // Default 10 ms, as runtime::kDefaultImmediateStateInterval (the reasoning is there); at most a
+  // second: a longer window would hold a change back longer than any heartbeat period allowed.
+  auto immediate = root.integer_or("immediate_state_interval_ms", 10, 1, 1000);
+  if (!immediate) return std::move(immediate).error();
+  config.immediate_state_interval = std::chrono::milliseconds(*immediate);
 
   auto layout = root.choice_or("layout", "node_type", {"node_type", "hub"});
   if (!layout) return std::move(layout).error();

@@ -58,6 +58,22 @@ subscriptions:
   EXPECT_EQ(config->subscriptions[0].timeout, milliseconds(300));
 }
 
+TEST(HubConfig, TheBudgetOfImmediateStatesDefaultsTo10MsAndIsBounded) {
+  auto config = parse("hub: dock_ecu\nnodes:\n  dock: {type: dock}\n");
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->immediate_state_interval, std::chrono::milliseconds(10));
+  config = parse("hub: dock_ecu\nimmediate_state_interval_ms: 25\nnodes:\n  dock: {type: dock}\n");
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->immediate_state_interval, std::chrono::milliseconds(25));
+  for (const char* bad : {"0", "1001", "-5", "fast"}) {
+    config = parse(std::string("hub: dock_ecu\nimmediate_state_interval_ms: ") + bad +
+                   "\nnodes:\n  dock: {type: dock}\n");
+    ASSERT_FALSE(config) << bad;
+    EXPECT_NE(config.error().message.find("immediate_state_interval_ms"), std::string::npos)
+        << config.error().message;
+  }
+}
+
 TEST(HubConfig, LongPeriodsGetALongerDefaultTimeout) {
   auto config = parse("hub: dock_ecu\nrate_hz: 1\nnodes:\n  dock: {type: dock}\n");
   ASSERT_TRUE(config) << config.error().message;

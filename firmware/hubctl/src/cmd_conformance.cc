@@ -17,6 +17,7 @@
 #include "conformance_report.h"
 #include "conformance_session.h"
 #include "launched_hub.h"
+#include "sample_decoder.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -316,7 +317,7 @@ int run_conformance(const ConformanceOptions& options) {
     json["domain"] = participant->domain_id();
     json["launched"] =
         options.launch.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.launch);
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}\n", safe_dump(json, 2));
   } else {
     fmt::print("{}", render_report(reports, options.verbose));
   }

@@ -10,6 +10,7 @@
 
 #include "commands.h"
 #include "render.h"
+#include "sample_decoder.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -52,6 +53,7 @@ int run_echo(const EchoOptions& options) {
     return kExitFailed;
   }
   dds::UntypedSample sample(*info.descriptor);
+  SampleDecoder decoder("hubctl echo", *ros_name);
   std::size_t printed = 0;
   const auto deadline = std::chrono::steady_clock::now() + seconds(options.domain.timeout_s);
   while (!stop_requested() && (options.count == 0 || printed < options.count)) {
@@ -69,11 +71,13 @@ int run_echo(const EchoOptions& options) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
       continue;
     }
-    const auto value = msgs::to_json(info, sample.data());
+    // A sample that cannot be shown is reported by the decoder and skipped; the stream goes on.
+    const auto value = decoder.decode(info, sample.data());
+    if (!value) continue;
     if (options.json) {
-      fmt::print("{}\n", value.dump());
+      fmt::print("{}\n", safe_dump(*value));
     } else {
-      fmt::print("--- {} ({})\n{}", *ros_name, info.ros_name, render_human(value));
+      fmt::print("--- {} ({})\n{}", *ros_name, info.ros_name, render_human(*value));
     }
     std::fflush(stdout);
     ++printed;

@@ -17,6 +17,7 @@
 #include "hubrt/msgs/json.h"
 
 #include "commands.h"
+#include "sample_decoder.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -46,6 +47,7 @@ struct Watched {
   std::optional<dds::UntypedTopic> dds_topic;
   std::optional<dds::UntypedReader> reader;
   std::optional<dds::UntypedSample> sample;
+  std::optional<SampleDecoder> decoder;
   nlohmann::ordered_json last;
   std::chrono::steady_clock::time_point last_seen{};
   std::size_t received = 0;
@@ -65,7 +67,7 @@ std::string details(const nlohmann::ordered_json& state) {
         for (const auto& [k, v] : item.items()) {
           if (k != "name")
             flags += fmt::format("{}{}", flags.empty() ? "" : ",",
-                                 v.is_boolean() ? (v.get<bool>() ? "1" : "0") : v.dump());
+                                 v.is_boolean() ? (v.get<bool>() ? "1" : "0") : safe_dump(v));
         }
         text += fmt::format("{}{}={}", text.empty() ? "" : " ", item["name"].get<std::string>(), flags);
       }
@@ -74,7 +76,7 @@ std::string details(const nlohmann::ordered_json& state) {
     } else if (value.is_number_float()) {
       text = fmt::format("{:g}", value.get<double>());
     } else {
-      text = value.dump();
+      text = safe_dump(value);
     }
     out += fmt::format("{}{}: {}", out.empty() ? "" : "  ", key, text);
   }
@@ -144,6 +146,7 @@ int run_watch(const WatchOptions& options) {
           if (!r) continue;
           w.reader.emplace(std::move(*r));
           w.sample.emplace(*type->descriptor);
+          w.decoder.emplace("hubctl watch", *ros);
           watched.emplace(*ros, std::move(w));
         }
       }
@@ -152,7 +155,10 @@ int run_watch(const WatchOptions& options) {
       while (true) {
         const Result<bool> taken = w.reader->take_next(w.sample->data());
         if (!taken.is_ok() || !taken.value()) break;
-        w.last = msgs::to_json(*w.type, w.sample->data());
+        // A sample that cannot be shown is reported and skipped; the others keep coming.
+        auto value = w.decoder->decode(*w.type, w.sample->data());
+        if (!value) continue;
+        w.last = std::move(*value);
         w.last_seen = std::chrono::steady_clock::now();
         ++w.received;
       }

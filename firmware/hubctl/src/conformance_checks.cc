@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "sample_decoder.h"
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -310,8 +312,9 @@ CheckResult check_safe_state(std::span<const Observation> tripped,
     for (const auto& [path, text] : expected) {
       const auto value = json_at(o.state, path);
       if (!json_matches_text(value, text)) {
-        return failed("safe_state", title,
-                      fmt::format("{}: {} is {}, expected {}", describe_seq(o), path, value.dump(), text));
+        return failed(
+            "safe_state", title,
+            fmt::format("{}: {} is {}, expected {}", describe_seq(o), path, safe_dump(value), text));
       }
     }
   }
@@ -333,9 +336,9 @@ CheckResult check_no_stale_reapply(std::span<const Observation> between, const O
                                 describe_seq(o)));
     }
     if (o.echo != tripped_echo) {
-      return failed(
-          std::move(id), std::move(title),
-          fmt::format("{} changed its echo to {} while no command was sent", describe_seq(o), o.echo.dump()));
+      return failed(std::move(id), std::move(title),
+                    fmt::format("{} changed its echo to {} while no command was sent", describe_seq(o),
+                                safe_dump(o.echo)));
     }
   }
   if (returned.arrival_s < sent_at_s) {
@@ -345,7 +348,7 @@ CheckResult check_no_stale_reapply(std::span<const Observation> between, const O
   if (returned.echo != sent) {
     return failed(std::move(id), std::move(title),
                   fmt::format("{} is fresh but echoes {} instead of the command just sent {}",
-                              describe_seq(returned), returned.echo.dump(), sent.dump()));
+                              describe_seq(returned), safe_dump(returned.echo), safe_dump(sent)));
   }
   CheckResult r = at_most(std::move(id), std::move(title), returned.t_plus * 1e3,
                           thresholds.t_plus_tolerance_ms, "ms", 1);
@@ -426,7 +429,7 @@ bool json_matches_text(const nlohmann::ordered_json& value, std::string_view tex
     return std::abs(actual - expected) <= 1e-6 * std::max(1.0, std::abs(expected));
   }
   if (value.is_string()) return value.get<std::string>() == text;
-  return !value.is_null() && value.dump() == text;
+  return !value.is_null() && safe_dump(value) == text;
 }
 
 }  // namespace hubrt::hubctl

@@ -221,7 +221,13 @@ bool TargetSession::run_semantics(std::vector<CheckResult>& out) {
 bool TargetSession::run_latency(std::vector<CheckResult>& out) {
   std::vector<double> latencies_ms;
   std::size_t lost = 0;
+  // The hub publishes at most one immediate State per immediate_interval_s (its budget, README's
+  // wire contract): a change sent sooner after the last one is echoed only by a later State,
+  // which would measure the budget, not the hub. The echo's arrival is after the hub published
+  // it, so waiting the interval (plus a millisecond) from the arrival is enough.
+  double ready_s = 0;
   for (std::size_t i = 0; i < options_.latency_samples && !stop_requested(); ++i) {
+    if (steady_seconds() < ready_s) drive(nullptr, ready_s);
     // Always the probe the hub does not echo now, so that it takes effect and is published at once.
     const PreparedCommand& next = other_probe(log().empty() ? nlohmann::ordered_json() : log().back().echo);
     const double sent_at = steady_seconds();
@@ -234,6 +240,7 @@ bool TargetSession::run_latency(std::vector<CheckResult>& out) {
         drive(nullptr, sent_at + echo_wait_s_, [&](const Observation& o) { return echoes(o, next); });
     if (echoed) {
       latencies_ms.push_back((log()[*echoed].arrival_s - sent_at) * 1e3);
+      ready_s = log()[*echoed].arrival_s + target_.immediate_interval_s + 0.001;
     } else {
       ++lost;
     }

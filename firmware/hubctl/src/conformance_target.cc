@@ -150,6 +150,8 @@ Target resolve_target(const std::string& state_topic, const msgs::TypeInfo& stat
     t.timeout_s = *t.profile->command_timeout_ms / 1e3;
     t.timeout_source = profile_source;
   }
+  if (heard != nullptr && heard->immediate_state_interval_ms && *heard->immediate_state_interval_ms >= 0)
+    t.immediate_interval_s = *heard->immediate_state_interval_ms / 1e3;
   if (t.timeout_s <= 0) {
     t.command_problems.push_back(
         "the command timeout is unknown: the hub does not publish it on /diagnostics; "

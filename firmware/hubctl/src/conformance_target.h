@@ -39,6 +39,9 @@ struct Target {
   std::string period_source;
   double timeout_s = 0;  // 0: unknown
   std::string timeout_source;
+  // The hub's budget of immediate States (at most one per this interval; README, wire contract):
+  // from /diagnostics, else the contract's default of 10 ms.
+  double immediate_interval_s = 0.010;
   const ConformanceProfile* profile = nullptr;
   const CommandProfile* commands = nullptr;  // nullptr: cannot command it
   // Why the command checks cannot run (no profile, unknown node type, ...); empty when they can.

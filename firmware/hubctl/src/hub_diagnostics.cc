@@ -11,6 +11,8 @@
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
 
+#include "sample_decoder.h"
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -53,6 +55,8 @@ void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& h
       if (const auto it = values.find("period_ms"); it != values.end()) d.period_ms = number(it->second);
       if (const auto it = values.find("command_timeout_ms"); it != values.end())
         d.command_timeout_ms = number(it->second);
+      if (const auto it = values.find("immediate_state_interval_ms"); it != values.end())
+        d.immediate_state_interval_ms = number(it->second);
     } else if (const auto node_type = values.find("node_type"); node_type != values.end()) {
       hubs[hub].node_types[part] = node_type->second;
     }
@@ -72,12 +76,14 @@ Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& partic
   auto reader = dds::UntypedReader::create(participant, *topic);
   if (!reader) return std::move(reader).error();
   dds::UntypedSample sample(*type->descriptor);
+  SampleDecoder decoder("hubctl", std::string(kDiagnosticsTopic));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline && !complete(hubs, wanted)) {
     const Result<bool> taken = reader->take_next(sample.data());
     if (!taken.is_ok()) break;
     if (taken.value()) {
-      absorb_diagnostics(msgs::to_json(*type, sample.data()), hubs);
+      // A sample that cannot be read is reported and skipped; the others still count.
+      if (auto value = decoder.decode(*type, sample.data())) absorb_diagnostics(*value, hubs);
       continue;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

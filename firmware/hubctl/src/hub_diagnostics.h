@@ -19,14 +19,15 @@ struct HubDiagnostics {
   std::string hub_type;
   std::optional<double> period_ms;
   std::optional<double> command_timeout_ms;
+  std::optional<double> immediate_state_interval_ms;           // the budget of immediate States
   std::map<std::string, std::string, std::less<>> node_types;  // node name -> node type
 };
 
 using DiagnosticsByHub = std::map<std::string, HubDiagnostics, std::less<>>;
 
 // Reads one DiagnosticArray (as msgs::to_json gives it) into `hubs`. Status "<hub>: cycle" with
-// key hub_type describes a hub (period_ms, command_timeout_ms); a status "<hub>: <node>" with key
-// node_type describes a node. Other statuses are ignored.
+// key hub_type describes a hub (period_ms, command_timeout_ms, immediate_state_interval_ms); a status "<hub>:
+// <node>" with key node_type describes a node. Other statuses are ignored.
 void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& hubs);
 
 // Listens on /diagnostics until every hub in `wanted` has described itself and its nodes, or

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "sample_decoder.h"
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -223,7 +225,7 @@ Verdict evaluate(const Predicate& predicate, const nlohmann::ordered_json& state
   std::string why;
   const nlohmann::ordered_json* field = resolve(predicate.path, state, why);
   if (field == nullptr) return broken(std::move(why));
-  const std::string shown = field->dump();
+  const std::string shown = safe_dump(*field);
   const std::string path = predicate.text.substr(0, predicate.text.find_first_of(" \t"));
   const auto verdict = [&](bool holds) {
     return Verdict{holds, false, fmt::format("{} is {}", path, shown)};

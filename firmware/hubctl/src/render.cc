@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "sample_decoder.h"
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -15,7 +17,7 @@ std::string scalar(const nlohmann::ordered_json& v) {
     return s.empty() ? "''" : s;
   }
   if (v.is_number_float()) return fmt::format("{:g}", v.get<double>());
-  return v.dump();
+  return safe_dump(v);
 }
 
 void render(const nlohmann::ordered_json& value, int indent, std::string& out) {

@@ -19,6 +19,7 @@
 
 #include "node_locator.h"
 #include "render.h"
+#include "sample_decoder.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -61,6 +62,7 @@ struct StateChannel {
   std::optional<dds::UntypedTopic> dds_topic;
   std::optional<dds::UntypedReader> reader;
   std::optional<dds::UntypedSample> sample;
+  std::optional<SampleDecoder> decoder;
   nlohmann::ordered_json latest;
   std::uint64_t generation = 0;
   SteadyClock::time_point received_at{};
@@ -159,7 +161,10 @@ class ScenarioRunner::Impl {
       for (int i = 0; i < 256; ++i) {
         const Result<bool> taken = channel->reader->take_next(channel->sample->data());
         if (!taken.is_ok() || !taken.value()) break;
-        channel->latest = msgs::to_json(*channel->type, channel->sample->data());
+        // A sample that cannot be read is reported and skipped; the scenario goes on.
+        auto value = channel->decoder->decode(*channel->type, channel->sample->data());
+        if (!value) continue;
+        channel->latest = std::move(*value);
         channel->received_at = SteadyClock::now();
         ++channel->generation;
       }
@@ -216,6 +221,7 @@ class ScenarioRunner::Impl {
     if (!r) return std::move(r).error();
     entry->reader.emplace(std::move(*r));
     entry->sample.emplace(*type.descriptor);
+    entry->decoder.emplace("hubctl play", topic);
     StateChannel* raw = entry.get();
     states_.emplace(topic, std::move(entry));
     return raw;

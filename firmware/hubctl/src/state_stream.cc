@@ -15,10 +15,10 @@ double steady_seconds() noexcept {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-Observation observe(const msgs::TypeInfo& type, const void* sample, double arrival_s) {
+Observation observe(nlohmann::ordered_json state_json, double arrival_s) {
   Observation o;
   o.arrival_s = arrival_s;
-  o.state = msgs::to_json(type, sample);
+  o.state = std::move(state_json);
   const auto& state = o.state;
   if (const auto header = state.find("header"); header != state.end() && header->is_object()) {
     o.seq = header->value("seq", std::uint64_t{0});
@@ -85,8 +85,11 @@ Result<std::size_t> StateStream::pump(double deadline_s) noexcept {
     const Result<bool> taken = reader_.take_next(sample_.data());
     if (!taken.is_ok()) return taken.status();
     if (!taken.value()) break;
+    // A State that cannot be read is reported by the decoder and skipped (it shows as a seq gap).
+    auto state = decoder_.decode(*type_, sample_.data());
+    if (!state) continue;
     try {
-      log_.push_back(observe(*type_, sample_.data(), arrival));
+      log_.push_back(observe(std::move(*state), arrival));
     } catch (const std::exception&) {
       return Status(ErrorCode::kInternal);  // out of memory: the tool cannot go on
     }

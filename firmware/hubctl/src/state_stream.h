@@ -16,14 +16,15 @@
 #include "hubrt/msgs/type_info.h"
 
 #include "conformance_checks.h"
+#include "sample_decoder.h"
 
 namespace hubrt::hubctl {
 
 // The steady clock in seconds, the time base of Observation::arrival_s.
 double steady_seconds() noexcept;
 
-// Turns a State sample of `type` (with the common State fields) into an Observation.
-Observation observe(const msgs::TypeInfo& type, const void* sample, double arrival_s);
+// Turns a State (as JSON, from SampleDecoder, with the common State fields) into an Observation.
+Observation observe(nlohmann::ordered_json state, double arrival_s);
 
 // Move-only. Thread-safety: use from one thread; creation may happen on another before that.
 class StateStream {
@@ -59,7 +60,8 @@ class StateStream {
         reader_(std::move(reader)),
         condition_(std::move(condition)),
         waitset_(std::move(waitset)),
-        sample_(*type.descriptor) {}
+        sample_(*type.descriptor),
+        decoder_("hubctl conformance", reader_.topic_name()) {}
 
   const msgs::TypeInfo* type_;
   // Destroyed in reverse: the waitset before the condition, the reader before its topic.
@@ -68,6 +70,7 @@ class StateStream {
   dds::ReadCondition condition_;
   dds::WaitSet waitset_;
   dds::UntypedSample sample_;
+  SampleDecoder decoder_;
   std::vector<Observation> log_;
   std::optional<double> first_arrival_s_;
 };

@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "hubrt/base/utf8.h"
+
 #include "closest_names.h"
 #include "sample_access.h"
 
@@ -72,7 +74,52 @@ Expected<Scalar> scalar_from_json(FieldKind kind, const Json& value, const std::
   return out;
 }
 
+// A received string as JSON can hold it: valid UTF-8 as it is; otherwise escaped (hubrt/base/
+// utf8.h), because nlohmann::json's dump() throws type_error 316 on invalid UTF-8 and a JSON
+// reader would reject it.
+std::string shown_text(std::string_view text) {
+  if (is_valid_utf8(text)) return std::string(text);
+  std::string out(4 * text.size(), '\0');  // every byte escaped (\xHH) at worst
+  const EscapedUtf8 escaped = append_escaped_utf8(text, out);
+  out.resize(escaped.written);
+  return out;
+}
+
+void collect_invalid_utf8(const FieldInfo& slot, const void* addr, const std::string& path,
+                          std::vector<std::string>& out) {
+  switch (slot.kind) {
+    case FieldKind::kString: {
+      const char* s = nullptr;
+      std::memcpy(&s, addr, sizeof s);
+      if (s != nullptr && !is_valid_utf8(s)) out.push_back(path);
+      return;
+    }
+    case FieldKind::kStruct:
+      for (const FieldInfo& f : slot.nested->fields)
+        collect_invalid_utf8(f, field_address(addr, f), join_path(path, f.name), out);
+      return;
+    case FieldKind::kSequence:
+    case FieldKind::kArray: {
+      if (slot.element_kind != FieldKind::kString && slot.element_kind != FieldKind::kStruct) return;
+      const FieldInfo element = element_slot(slot);
+      const std::size_t n = element_count(slot, addr);
+      for (std::size_t i = 0; i < n; ++i)
+        collect_invalid_utf8(element, element_address(slot, addr, i), fmt::format("{}[{}]", path, i), out);
+      return;
+    }
+    default:
+      return;
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> invalid_utf8_fields(const TypeInfo& type, const void* sample) {
+  std::vector<std::string> out;
+  for (const FieldInfo& f : type.fields)
+    collect_invalid_utf8(f, field_address(sample, f), std::string(f.name), out);
+  return out;
+}
 
 std::string_view display_name(const TypeInfo& type) {
   return type.ros_name.empty() ? type.dds_name : type.ros_name;
@@ -124,7 +171,7 @@ Json slot_to_json(const FieldInfo& slot, const void* addr) {
     case FieldKind::kString: {
       const char* s = nullptr;
       std::memcpy(&s, addr, sizeof s);
-      return s == nullptr ? std::string() : std::string(s);
+      return s == nullptr ? std::string() : shown_text(s);
     }
     case FieldKind::kStruct:
       return struct_to_json(*slot.nested, addr);

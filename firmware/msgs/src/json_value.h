@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +28,8 @@ Error unknown_field(const TypeInfo& type, std::string_view name, std::string_vie
 std::string_view display_name(const TypeInfo& type);
 
 Json slot_to_json(const FieldInfo& slot, const void* addr);
+// See msgs::invalid_utf8_fields().
+std::vector<std::string> invalid_utf8_fields(const TypeInfo& type, const void* sample);
 Json struct_to_json(const TypeInfo& type, const void* addr);
 
 // `path` is the dotted path of the slot, used in messages.

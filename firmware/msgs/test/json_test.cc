@@ -66,6 +66,22 @@ TEST(ToJson, NullStringsAndEmptySequencesOfAZeroSample) {
   EXPECT_EQ(j["echo"]["action"], "");
 }
 
+TEST(ToJson, TextThatIsNotUtf8IsEscapedSoTheJsonCanAlwaysBeDumped) {
+  OwnedSample<hub_msgs_msg_dds__DockState_> s;
+  fill_by_hand(*s);
+  dds_free(s->error_list._buffer[0]);
+  s->error_list._buffer[0] = dds_string_dup("unknown action 'a\xed\xa0\x80'");  // issue 11
+  dds_free(s->slots._buffer[1].name);
+  s->slots._buffer[1].name = dds_string_dup("\xc0\xaf\\");
+  const Json j = to_json(s.type(), s.get());
+  EXPECT_EQ(j["error_list"][0], "unknown action 'a\\xED\\xA0\\x80'");
+  EXPECT_EQ(j["slots"][1]["name"], "\\xC0\\xAF\\\\") << "a backslash in escaped text is doubled";
+  EXPECT_EQ(j["name"], "dock1") << "valid text stays as it is";
+  EXPECT_NO_THROW((void)j.dump()) << "nlohmann's type_error 316 was the crash of hubctl echo --json";
+  EXPECT_THAT(invalid_utf8_fields(s.type(), s.get()),
+              ::testing::ElementsAre("error_list[0]", "slots[1].name"));
+}
+
 TEST(ToJson, ConvertsToPlainNlohmannJson) {
   OwnedSample<hub_msgs_msg_dds__DockState_> s;
   fill_by_hand(*s);

@@ -64,11 +64,17 @@ void Hub::step(const Instant& now, bool publish_all) noexcept {
   for (const auto& node : nodes_) {
     const bool took_effect = node->step(now);
     any_took_effect |= took_effect;
-    if (publish_all || took_effect) {
-      if (!node->publish(now).is_ok()) ++stats_.publish_errors;
-    }
+    const Status published = publish_all ? node->publish(now) : node->publish_if_due(now, took_effect);
+    if (!published.is_ok()) ++stats_.publish_errors;
   }
   for (const auto& stage : stages_) stage->after_nodes(now, publish_all, any_took_effect);
+}
+
+std::uint64_t Hub::states_deferred() const noexcept {
+  std::uint64_t total = 0;
+  for (const auto& node : nodes_) total += node->states_deferred();
+  for (const auto& stage : stages_) total += stage->states_deferred();
+  return total;
 }
 
 void Hub::enter_safe_state() noexcept {

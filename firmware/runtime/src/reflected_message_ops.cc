@@ -4,8 +4,14 @@
 #include <cstdint>
 #include <cstring>
 
+#include "hubrt/base/utf8.h"
+#include "hubrt/runtime/escaped_text.h"
+
 namespace hubrt::runtime {
 namespace {
+
+constexpr const char* kNotUtf8 = "is not valid UTF-8";
+constexpr const char* kControlCharacter = "contains a control character";
 
 using msgs::FieldInfo;
 using msgs::FieldKind;
@@ -197,12 +203,17 @@ class FieldChecker {
     }
     if (field.element_kind != FieldKind::kString) return true;
     const char* text = *static_cast<const char* const*>(value);
-    if (const char* why = string_problem(text, max_length_); why != nullptr) {
-      problem_.format("field '{}' {} (limit {} bytes of UTF-8 text)",
-                      std::string_view(path_.data(), path_length_), why, max_length_);
-      return false;
+    const char* why = string_problem(text, max_length_);
+    if (why == nullptr) return true;
+    const std::string_view path(path_.data(), path_length_);
+    if (why == kNotUtf8 || why == kControlCharacter) {
+      // Quoted escaped, so that the operator sees which bytes came and the State stays UTF-8.
+      problem_.format("field '{}' {}: '{}' (limit {} bytes of UTF-8 text)", path, why,
+                      Escaped{std::string_view(text, strnlen(text, max_length_))}, max_length_);
+    } else {
+      problem_.format("field '{}' {} (limit {} bytes of UTF-8 text)", path, why, max_length_);
     }
-    return true;
+    return false;
   }
 
   static bool needs_check(FieldKind kind) noexcept {
@@ -237,30 +248,14 @@ class FieldChecker {
 
 const char* string_problem(const char* text, std::size_t max_length) noexcept {
   if (text == nullptr) return "is missing";
-  const auto* p = reinterpret_cast<const unsigned char*>(text);  // NOLINT: bytes of a C string
-  std::size_t length = 0;
-  while (p[length] != 0) {
-    if (length >= max_length) return "is too long";
-    const unsigned char c = p[length];
-    if (c < 0x20 || c == 0x7f) return "contains a control character";
-    std::size_t extra = 0;
-    if (c < 0x80) {
-      extra = 0;
-    } else if ((c & 0xe0) == 0xc0 && c >= 0xc2) {
-      extra = 1;
-    } else if ((c & 0xf0) == 0xe0) {
-      extra = 2;
-    } else if ((c & 0xf8) == 0xf0 && c <= 0xf4) {
-      extra = 3;
-    } else {
-      return "is not valid UTF-8";
-    }
-    for (std::size_t i = 1; i <= extra; ++i) {
-      if ((p[length + i] & 0xc0) != 0x80) return "is not valid UTF-8";
-    }
-    length += 1 + extra;
-  }
+  // strnlen: never reads further than one byte past the limit, however long the string.
+  const std::size_t length = strnlen(text, max_length + 1);
   if (length > max_length) return "is too long";
+  const std::string_view bytes(text, length);
+  if (!is_valid_utf8(bytes)) return kNotUtf8;
+  for (const char c : bytes) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return kControlCharacter;
+  }
   return nullptr;
 }
 

@@ -25,11 +25,15 @@ class CountingNode final : public NodeBase {
     ++publishes;
     return Status::ok();
   }
+  Status publish_if_due(const Instant& now, bool took_effect) noexcept override {
+    return took_effect ? publish(now) : Status::ok();
+  }
   void enter_safe_state() noexcept override { ++safe_calls; }
   Health health() const noexcept override { return Health::kOk; }
   std::string_view first_error() const noexcept override { return {}; }
   std::uint64_t published() const noexcept override { return publishes; }
   std::uint64_t rejected() const noexcept override { return 0; }
+  std::uint64_t states_deferred() const noexcept override { return 0; }
 
   std::atomic<int> steps{0};
   std::atomic<std::uint64_t> publishes{0};

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hubrt/base/utf8.h"
 #include "hubrt/runtime/text_buffer.h"
 
 namespace hubrt::runtime {
@@ -26,6 +27,31 @@ TEST(TextBuffer, FormatsAndCutsLongTextVisibly) {
   text.format("{}", "abcdefghijk");
   EXPECT_EQ(text.view(), "abcde...");
   EXPECT_EQ(std::string(text.c_str()), "abcde...");
+}
+
+TEST(TextBuffer, CuttingNeverSplitsAUtf8Character) {
+  TextBuffer<8> text;
+  // "abcd" + U+1F527 (4 bytes): the cut at byte 5 would fall inside the character.
+  text.assign("abcd\xf0\x9f\x94\xa7xyz");
+  EXPECT_EQ(text.view(), "abcd...");
+  EXPECT_TRUE(is_valid_utf8(text.view()));
+  text.format("{}", "ab\xc3\xbc\xc3\xbc\xc3\xbc\xc3\xbc");  // "ab" and four "ü": the cut falls inside one
+  EXPECT_TRUE(is_valid_utf8(text.view())) << text.view();
+  EXPECT_EQ(text.view(), "ab\xc3\xbc...");
+}
+
+TEST(ErrorList, AMessageQuotingBadBytesIsStoredEscaped) {
+  ErrorList errors;
+  // What issue 11 saw: raw peer bytes formatted into an error (here on purpose, unescaped).
+  errors.add("unknown action '{}'", "a\xed\xa0\x80");
+  errors.add("device says '{}'", std::string(300, '\xff'));
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors.at(0), "unknown action 'a\\xED\\xA0\\x80'");
+  EXPECT_TRUE(is_valid_utf8(errors.at(1)));
+  EXPECT_LE(errors.at(1).size(), ErrorList::kMaxLength);
+  EXPECT_EQ(errors.at(1).substr(errors.at(1).size() - 3), "...");
+  errors.add("plain \xc3\xbc stays");
+  EXPECT_EQ(errors.at(2), "plain \xc3\xbc stays");
 }
 
 TEST(ErrorList, BindsIntoTheWireSequenceWithoutCopying) {

@@ -209,10 +209,29 @@ std::vector<BadCommandCase> bad_commands() {
       "rejected command: field 'tags[1]' is too long (limit 64 bytes of UTF-8 text)");
   add(
       "control character", [](auto& c) { c.action = "op\x1b[2Jen"; },
-      "rejected command: field 'action' contains a control character (limit 64 bytes of UTF-8 text)");
+      "rejected command: field 'action' contains a control character: 'op\\x1B[2Jen' (limit 64 bytes of "
+      "UTF-8 "
+      "text)");
   add(
       "invalid UTF-8", [](auto& c) { c.target_type = "val\xc3(ve"; },
-      "rejected command: field 'target_type' is not valid UTF-8 (limit 64 bytes of UTF-8 text)");
+      "rejected command: field 'target_type' is not valid UTF-8: 'val\\xC3(ve' (limit 64 bytes of UTF-8 "
+      "text)");
+  add(
+      "encoded surrogate (issue 11: it used to pass and be quoted raw as an unknown action)",
+      [](auto& c) {
+        c.action =
+            "op\xed\xa0\x80"
+            "en";
+      },
+      "rejected command: field 'action' is not valid UTF-8: 'op\\xED\\xA0\\x80en' (limit 64 bytes of UTF-8 "
+      "text)");
+  add(
+      "encoded surrogate in a sequence",
+      [](auto& c) {
+        c.tags = {"ok", "\xed\xbf\xbf"};
+      },
+      "rejected command: field 'tags[1]' is not valid UTF-8: '\\xED\\xBF\\xBF' (limit 64 bytes of UTF-8 "
+      "text)");
   add(
       "out of range value", [](auto& c) { c.pressure_bar = 12.5f; },
       "rejected command: pressure_bar 12.5 is out of range [0, 10]");

@@ -76,6 +76,10 @@ TEST(StringProblem, RejectsWhatAPlannerShouldNeverSend) {
   EXPECT_STREQ(string_problem("\xe2\x82", 64), "is not valid UTF-8") << "truncated sequence";
   EXPECT_STREQ(string_problem("\xf5\x80\x80\x80", 64), "is not valid UTF-8") << "beyond U+10FFFF";
   EXPECT_STREQ(string_problem("\x80", 64), "is not valid UTF-8") << "stray continuation byte";
+  EXPECT_STREQ(string_problem("\xed\xa0\x80", 64), "is not valid UTF-8") << "encoded surrogate U+D800";
+  EXPECT_STREQ(string_problem("\xe0\x80\xaf", 64), "is not valid UTF-8") << "overlong 3-byte form";
+  EXPECT_STREQ(string_problem("\xf0\x80\x80\xaf", 64), "is not valid UTF-8") << "overlong 4-byte form";
+  EXPECT_STREQ(string_problem("\xf4\x90\x80\x80", 64), "is not valid UTF-8") << "U+110000";
 }
 
 }  // namespace

@@ -84,5 +84,54 @@ TEST(SteadyCycle, AllocatesNothing) {
   EXPECT_EQ(node_ref.rejected(), 0u);
 }
 
+// Issue 11's hostile inputs on the cycle path: a flood of alternating commands (the budget
+// holds States back) and commands with bad UTF-8 and control characters (rejected, quoted
+// escaped into error_list) allocate nothing either.
+TEST(SteadyCycle, AFloodAndBadCommandTextAllocateNothing) {
+  ManualClock clock;
+  ValveWorld world;
+  QueueSource source;
+  CountingSink sink;
+  ReflectedMessageOps ops(msgs::type_info_of<ValveCommand>());
+  Hub hub(HubOptions{"test", "hub", milliseconds(10), nullptr});
+  NodeOptions options;
+  options.name = "v1";
+  options.command_timeout = milliseconds(100);
+  auto node = std::make_unique<Node<ValveLogic>>(options, ValveLogic(world), source, sink, ops);
+  const auto& node_ref = *node;
+  hub.add_node(std::move(node));
+
+  constexpr std::size_t kCommands = 2000;
+  for (std::size_t i = 0; i < kCommands; ++i) {
+    OwnedValveCommand command;
+    command.action = i % 2 == 0 ? "open" : "close";
+    if (i % 10 == 3)
+      command.action =
+          "op\xed\xa0\x80"
+          "en";                                                      // encoded surrogate
+    if (i % 10 == 7) command.tags = {"ok", "line\nbreak \xc0\xaf"};  // control character, overlong
+    source.push(command);
+  }
+  source.deliver_up_to(0);
+  spdlog::info("flood allocation test: start");  // spdlog's caches, as in the test above
+  for (int i = 0; i < 5; ++i) {
+    hub.cycle(clock.now());
+    clock.advance(milliseconds(10));
+  }
+
+  AllocationScope scope;
+  for (std::size_t i = 0; i < kCommands; ++i) {
+    source.deliver_up_to(i + 1);
+    hub.command_step(clock.now());  // a command every 100 us: 10 kHz
+    clock.advance(std::chrono::microseconds(100));
+    if (i % 100 == 99) hub.cycle(clock.now());
+  }
+  const std::size_t allocations = scope.count();
+
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_GT(node_ref.states_deferred(), 1000u) << "the budget held States back";
+  EXPECT_GE(node_ref.rejected(), kCommands / 5) << "the bad commands were rejected";
+}
+
 }  // namespace
 }  // namespace hubrt::runtime::testing

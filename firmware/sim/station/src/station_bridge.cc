@@ -5,6 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/runtime/node.h"
+#include "hubrt/runtime/reflected_message_ops.h"
+
+#include "station_reflect.h"
+
 namespace hubrt::sim::station {
 namespace {
 
@@ -95,6 +100,15 @@ void StationBridge::take_commands(Time now) {
     const Result<bool> taken = dds_.command_reader.take_next(command_);
     if (!taken.is_ok() || !taken.value()) break;
     const auto& c = command_.get();
+    // The hubs' rules for command text (strict UTF-8, no control characters, 64 bytes), with the
+    // same escaped rejection: the State and the log must never carry raw bytes from a peer.
+    static const runtime::ReflectedMessageOps ops(msgs::type_info_of<hub_msgs_msg_dds__StationCommand_>());
+    if (runtime::Problem problem; !ops.check_fields(&c, runtime::kMaxCommandString, problem)) {
+      rejection_ = std::string(problem.view());
+      rejected_at_ = now;
+      log_->warn("station: rejected command: {}", rejection_);
+      continue;
+    }
     on_command(Echo{text(c.target_type), text(c.target_name), text(c.action), text(c.location)}, now);
   }
 }

@@ -24,16 +24,19 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 12;
+  static constexpr std::size_t kMaxValues = 16;
 
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as
-  // `hubctl conformance` learn the watchdog's timeout from the wire; so is `log_lines_dropped`
-  // when given (key log_lines_dropped: log lines lost to a closed stderr; must outlive the stage).
+  // `hubctl conformance` learn the watchdog's timeout from the wire; likewise a positive
+  // `immediate_state_interval` (key immediate_state_interval_ms), the budget of immediate States,
+  // so that a tool measuring echo latency spaces its changes by at least that much; and
+  // `log_lines_dropped` when given (key log_lines_dropped: log lines lost to a closed stderr;
+  // must outlive the stage).
   // Errors: the DDS topic or writer that could not be created.
   static Expected<std::unique_ptr<DiagnosticsStage>> create(
       const dds::Participant& participant, const runtime::Hub& hub, std::string hardware_id,
-      Duration interval, Duration command_timeout = {},
+      Duration interval, Duration command_timeout = {}, Duration immediate_state_interval = {},
       const std::atomic<std::uint64_t>* log_lines_dropped = nullptr);
 
   void before_nodes(const Instant& /*now*/) noexcept override {}
@@ -53,7 +56,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
   DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer, const runtime::Hub& hub,
                    std::string hardware_id, Duration interval, Duration command_timeout,
-                   const std::atomic<std::uint64_t>* log_lines_dropped);
+                   Duration immediate_state_interval, const std::atomic<std::uint64_t>* log_lines_dropped);
   void fill_hub_status(const Instant& now) noexcept;
   void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
   void set_value(std::size_t status, std::size_t slot, const char* key,
@@ -66,6 +69,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
   Duration interval_;
   Duration command_timeout_;
   const std::atomic<std::uint64_t>* log_lines_dropped_;
+  Duration immediate_state_interval_;
   Time next_due_{};
   bool started_ = false;
   Time started_at_{};

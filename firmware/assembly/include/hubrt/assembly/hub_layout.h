@@ -162,8 +162,14 @@ class HubLayoutStage final : public runtime::CycleStage {
   void before_nodes(const Instant& now) noexcept override { took_effect_ = node_->advance(now); }
   void after_nodes(const Instant& now, bool publish_all, bool nodes_took_effect) noexcept override {
     node_->rebuild_state(now.mono);
-    if (publish_all || took_effect_ || nodes_took_effect) node_->publish(now).ignore();
+    // The hub State is what goes on the wire, so the budget of immediate States applies to it.
+    if (publish_all) {
+      node_->publish(now).ignore();
+    } else {
+      node_->publish_if_due(now, took_effect_ || nodes_took_effect).ignore();
+    }
   }
+  [[nodiscard]] std::uint64_t states_deferred() const noexcept override { return node_->states_deferred(); }
 
  private:
   dds::Topic<HubCommand> command_topic_;
@@ -246,6 +252,9 @@ class NodeWiring {
     options.name = node.name;
     options.command_timeout = context_.config.command_timeout;
     options.addressing = runtime::Addressing::kRejectOthers;
+    // Its State only goes into the hub State, whose own budget bounds what goes on the wire; a
+    // budget here would only keep the embedded header from being restamped.
+    options.immediate_state_interval = Duration::zero();
     options.log = context_.log;
     auto added =
         std::make_unique<runtime::Node<Logic>>(std::move(options), std::move(logic), route->source(),
@@ -263,6 +272,7 @@ class NodeWiring {
     options.name = context_.config.name;
     options.command_timeout = context_.config.command_timeout;
     options.addressing = runtime::Addressing::kRejectOthers;  // the topic is this hub's own
+    options.immediate_state_interval = context_.config.immediate_state_interval;
     options.log = context_.log;
     stage_->start(std::move(options));
     hub_.add_stage(std::move(stage_));

@@ -65,6 +65,7 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   options.name = node.name;
   options.command_timeout = context.config.command_timeout;
   options.addressing = runtime::Addressing::kIgnoreOthers;
+  options.immediate_state_interval = context.config.immediate_state_interval;
   options.log = context.log;
   hub.add_node(std::make_unique<runtime::Node<Logic>>(std::move(options), std::move(logic), ports->source,
                                                       ports->sink, message_ops<Command>()));

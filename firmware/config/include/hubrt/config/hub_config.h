@@ -40,6 +40,8 @@ struct HubConfig {
   double rate_hz = 10.0;
   Duration period{};
   Duration command_timeout{};
+  // At most one State per node published at once (outside the heartbeat) per this interval.
+  Duration immediate_state_interval = std::chrono::milliseconds(10);
   Layout layout = Layout::kNodeType;
   std::string ros_namespace;  // "" or "/station1": prefix of every topic
   double diagnostics_hz = 1.0;
@@ -48,7 +50,8 @@ struct HubConfig {
 };
 
 // Loads and validates a hub configuration. Errors name file:line:col, the key and the problem.
-// Checks: known keys, rate in (0, 1000] Hz, timeout at least two periods, names usable in ROS
+// Checks: known keys, rate in (0, 1000] Hz, timeout at least two periods, immediate-State interval
+// in [1, 1000] ms, names usable in ROS
 // topic names, node names unique, layout known. Node settings are checked by the hub type.
 Expected<HubConfig> load_hub_config(const std::string& path);
 Expected<HubConfig> parse_hub_config(const YamlMap& root);

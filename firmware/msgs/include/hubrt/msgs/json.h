@@ -6,6 +6,9 @@
 // infinities become null, and null reads back as NaN), string <-> string.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "hubrt/base/status.h"
@@ -14,9 +17,16 @@
 namespace hubrt::msgs {
 
 // Field order is kept (ordered_json); converts implicitly to nlohmann::json if needed.
+// A string that is not valid UTF-8 (a hostile or broken peer sent it) comes out with its bad
+// bytes escaped as "\xED" (hubrt::append_escaped_utf8), so that the result can always be
+// dumped; invalid_utf8_fields() says which fields that happened to.
 // Precondition: `sample` points to a valid instance of `type` (null strings read as "").
 // Allocates; never fails. Thread-safe for concurrent reads of the same sample.
 nlohmann::ordered_json to_json(const TypeInfo& type, const void* sample);
+
+// Dotted paths of the strings of `sample` that are not valid UTF-8 (RFC 3629), e.g.
+// "error_list[0]", "echo.action"; empty for a clean sample. Allocates; thread-safe for reads.
+std::vector<std::string> invalid_utf8_fields(const TypeInfo& type, const void* sample);
 
 // Assigns the fields present in `value` (an object) to `sample`; absent fields keep their values,
 // a sequence given is replaced whole. Strings and sequence buffers are allocated with

@@ -21,7 +21,10 @@ class ErrorList {
   }
 
   // Adds one message. When the list is full the message is dropped and counted; the last entry
-  // then says how many were dropped, so an operator never sees a silently short list.
+  // then says how many were dropped, so an operator never sees a silently short list. A message
+  // that is not valid UTF-8 (it quotes bytes a peer or a device sent) is stored with those bytes
+  // escaped (\xED): one bad string in error_list would make the whole State unreadable to a
+  // ROS 2 client or to JSON tools.
   template <class... Args>
   void add(fmt::format_string<Args...> spec, Args&&... args) noexcept {
     if (count_ == kMaxEntries) {
@@ -30,6 +33,7 @@ class ErrorList {
       return;
     }
     entries_[count_].format(spec, std::forward<Args>(args)...);
+    entries_[count_].make_valid_utf8();
     pointers_[count_] = const_cast<char*>(entries_[count_].c_str());  // NOLINT: the wire type wants char*
     ++count_;
   }

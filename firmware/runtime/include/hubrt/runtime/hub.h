@@ -1,7 +1,8 @@
 // A hub: its nodes and the fixed-rate cycle over them. Each cycle: every node takes its
 // commands, reads inputs, runs its logic, writes outputs, rebuilds its State — then every State
 // is published (the heartbeat). A command that arrives between cycles triggers the same step at
-// once and publishes only the States whose command took effect.
+// once and publishes only the States whose command took effect, within each node's budget of
+// immediate States (ImmediateStateBudget; a change held back goes out with the next State).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,9 @@ class CycleStage {
   // Once, after the nodes entered their safe state on the way out: e.g. the simulation bridge
   // publishes the outputs a last time, so that watchers see them safe.
   virtual void after_safe_state(const Instant& /*now*/) noexcept {}
+
+  // Immediate States this stage held back for its budget (the hub layout's hub State).
+  [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept { return 0; }
 };
 
 struct CycleStats {
@@ -76,6 +80,8 @@ class Hub {
   [[nodiscard]] const CycleStats& stats() const noexcept { return stats_; }
   [[nodiscard]] const std::vector<std::unique_ptr<NodeBase>>& nodes() const noexcept { return nodes_; }
   [[nodiscard]] NodeBase* find_node(std::string_view name) const noexcept;
+  // Immediate States held back by every node's and stage's budget, since start.
+  [[nodiscard]] std::uint64_t states_deferred() const noexcept;
 
  private:
   void step(const Instant& now, bool publish_all) noexcept;

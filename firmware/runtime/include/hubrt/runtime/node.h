@@ -19,6 +19,8 @@
 #include "hubrt/runtime/arena.h"
 #include "hubrt/runtime/command_tracker.h"
 #include "hubrt/runtime/error_list.h"
+#include "hubrt/runtime/escaped_text.h"
+#include "hubrt/runtime/immediate_state_budget.h"
 #include "hubrt/runtime/message_ops.h"
 #include "hubrt/runtime/ports.h"
 
@@ -61,6 +63,8 @@ struct NodeOptions {
   std::string name;
   Duration command_timeout = std::chrono::milliseconds(1000);
   Addressing addressing = Addressing::kIgnoreOthers;
+  // At most one immediate State (outside the heartbeat) per this interval: ImmediateStateBudget.
+  Duration immediate_state_interval = kDefaultImmediateStateInterval;
   std::shared_ptr<spdlog::logger> log;
 };
 
@@ -75,14 +79,20 @@ class NodeBase {
   // Takes commands, runs the watchdog and the logic, writes outputs, rebuilds the State.
   // Returns true when a command took effect, i.e. the State should be published now.
   virtual bool step(const Instant& now) noexcept = 0;
-  // Stamps and publishes the State built by the last step.
+  // The heartbeat: stamps and publishes the State built by the last step, always.
   virtual Status publish(const Instant& now) noexcept = 0;
+  // After a step between heartbeats: stamps and publishes the State when a command took effect
+  // in it (`took_effect`), or a change held back earlier still waits, and the node's
+  // ImmediateStateBudget allows it now; otherwise holds the change back for the next State.
+  virtual Status publish_if_due(const Instant& now, bool took_effect) noexcept = 0;
   virtual void enter_safe_state() noexcept = 0;
   [[nodiscard]] virtual Health health() const noexcept = 0;
   // First entry of the error list, or empty.
   [[nodiscard]] virtual std::string_view first_error() const noexcept = 0;
   [[nodiscard]] virtual std::uint64_t published() const noexcept = 0;
   [[nodiscard]] virtual std::uint64_t rejected() const noexcept = 0;
+  // Changes whose immediate State the budget held back (they went out with a later State).
+  [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept = 0;
 };
 
 template <NodeLogic Logic>
@@ -102,6 +112,7 @@ class Node final : public NodeBase {
         sink_(sink),
         ops_(ops),
         tracker_(options_.command_timeout),
+        budget_(options_.immediate_state_interval),
         arenas_{Arena(kEchoArenaBytes), Arena(kEchoArenaBytes)} {
     static_assert(
         std::find(Logic::kActions.begin(), Logic::kActions.end(), kResetAction) != Logic::kActions.end(),
@@ -159,6 +170,17 @@ class Node final : public NodeBase {
   }
 
   Status publish(const Instant& now) noexcept override {
+    budget_.on_heartbeat();
+    return stamp_and_publish(now);
+  }
+
+  Status publish_if_due(const Instant& now, bool took_effect) noexcept override {
+    if (!budget_.publish_now(now.mono, took_effect)) return Status::ok();
+    return stamp_and_publish(now);
+  }
+
+  // Stamps the State built by the last step and hands it to the sink.
+  Status stamp_and_publish(const Instant& now) noexcept {
     state_.header.seq = ++published_;
     state_.header.stamp.sec = static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000);
     state_.header.stamp.nanosec = static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000);
@@ -176,6 +198,7 @@ class Node final : public NodeBase {
   }
   [[nodiscard]] std::uint64_t published() const noexcept override { return published_; }
   [[nodiscard]] std::uint64_t rejected() const noexcept override { return rejected_; }
+  [[nodiscard]] std::uint64_t states_deferred() const noexcept override { return budget_.deferred(); }
 
  private:
   // Drains the source; the last valid command wins. Returns true when one took effect.
@@ -201,21 +224,23 @@ class Node final : public NodeBase {
   }
 
   // Validates a command addressed here; a rejected one is reported and changes nothing else.
+  // Command text quoted in a problem is Escaped: check_fields() already refused bad UTF-8, but
+  // nothing a peer sends may reach a State unescaped.
   bool accept(const Command& command, Time now) noexcept {
     Problem& problem = last_rejection_;
     bool ok = ops_.check_fields(&command, kMaxCommandString, problem);
     if (ok && view(command.target_name) != options_.name) {
-      problem.format("wrong target: addressed to '{}', this node is '{}'", view(command.target_name),
+      problem.format("wrong target: addressed to '{}', this node is '{}'", Escaped{view(command.target_name)},
                      options_.name);
       ok = false;
     }
     if (ok && view(command.target_type) != Logic::kType) {
-      problem.format("wrong target type '{}' for node '{}' of type '{}'", view(command.target_type),
+      problem.format("wrong target type '{}' for node '{}' of type '{}'", Escaped{view(command.target_type)},
                      options_.name, Logic::kType);
       ok = false;
     }
     if (ok && !known_action(view(command.action))) {
-      problem.format("unknown action '{}' (expected one of: {})", view(command.action),
+      problem.format("unknown action '{}' (expected one of: {})", Escaped{view(command.action)},
                      fmt::join(Logic::kActions, ", "));
       ok = false;
     }
@@ -274,6 +299,7 @@ class Node final : public NodeBase {
   StateSink<State>& sink_;
   const MessageOps& ops_;
   CommandTracker tracker_;
+  ImmediateStateBudget budget_;
   // Double-buffered deep copies of the echoed command; echoes_[current_] is the echo.
   std::array<Arena, 2> arenas_;
   std::array<Command, 2> echoes_{};

@@ -22,7 +22,8 @@ class ReflectedMessageOps final : public MessageOps {
 };
 
 // Why `text` is not acceptable in a command string, or nullptr when it is: at most `max_length`
-// bytes, well-formed UTF-8, no control characters.
+// bytes, well-formed UTF-8 per RFC 3629 (hubrt::is_valid_utf8: no overlongs, no encoded
+// surrogates, nothing above U+10FFFF), no control characters. Reads at most max_length + 1 bytes.
 const char* string_problem(const char* text, std::size_t max_length) noexcept;
 
 }  // namespace hubrt::runtime
