@@ -68,8 +68,8 @@ class DiagnosticsStage final : public runtime::CycleStage {
   std::string hardware_id_;
   Duration interval_;
   Duration command_timeout_;
-  const std::atomic<std::uint64_t>* log_lines_dropped_;
   Duration immediate_state_interval_;
+  const std::atomic<std::uint64_t>* log_lines_dropped_;
   Time next_due_{};
   bool started_ = false;
   Time started_at_{};
