@@ -118,6 +118,16 @@ TEST_F(HubctlSendTest, WaitForMoreReadersThanThereAreFailsWithNothingSent) {
   }
 }
 
+// Before: a warning, the sample sent into the void, and exit 0.
+TEST_F(HubctlSendTest, OnceWithNobodyListeningFailsWithNothingSent) {
+  ChildProcess send = start_send({"--once", "--timeout", "1"});
+  const Finished sent = finish(send, seconds(60));
+  EXPECT_TRUE(sent.status.exited_with(1)) << sent.status.describe() << "\n" << sent.output;
+  EXPECT_NE(sent.output.find("hubctl send: nobody reads /sim/fault (waited 1.0 s); nothing sent"),
+            std::string::npos)
+      << sent.output;
+}
+
 // The third hub comes up while send waits for it: it gets the fault too.
 TEST_F(HubctlSendTest, WaitForNReadersWaitsForALateOne) {
   std::vector<ChildProcess> readers;
