@@ -41,6 +41,13 @@ class HubctlSendTest : public ::testing::Test {
     return std::move(*child);
   }
 
+  std::vector<ChildProcess> start_readers(std::size_t count) {
+    std::vector<ChildProcess> readers;
+    readers.reserve(count + 1);  // room for a late one
+    for (std::size_t i = 0; i < count; ++i) readers.push_back(start_reader());
+    return readers;
+  }
+
   // Waits until the observer has discovered `count` readers of /sim/fault: the hubs are up before
   // anyone sends them a fault. 60 s: start-up under sanitizers on a loaded machine is slow.
   void await_readers(std::size_t count) {
@@ -84,8 +91,7 @@ class HubctlSendTest : public ::testing::Test {
 // after the write never got the fault. (--type makes send create its writer before discovery
 // has found anyone, as with hubs that are busy answering several new participants.)
 TEST_F(HubctlSendTest, OnceReachesEveryReaderOnTheDomain) {
-  std::vector<ChildProcess> readers;
-  for (int i = 0; i < 3; ++i) readers.push_back(start_reader());
+  std::vector<ChildProcess> readers = start_readers(3);
   await_readers(3);
   ChildProcess send = start_send({"--once", "--timeout", "30"});
   const Finished sent = finish(send, seconds(60));
@@ -103,8 +109,7 @@ TEST_F(HubctlSendTest, OnceReachesEveryReaderOnTheDomain) {
 }
 
 TEST_F(HubctlSendTest, WaitForMoreReadersThanThereAreFailsWithNothingSent) {
-  std::vector<ChildProcess> readers;
-  for (int i = 0; i < 2; ++i) readers.push_back(start_reader());
+  std::vector<ChildProcess> readers = start_readers(2);
   await_readers(2);
   ChildProcess send = start_send({"--once", "--wait", "3", "--timeout", "2"});
   const Finished sent = finish(send, seconds(60));
@@ -130,8 +135,7 @@ TEST_F(HubctlSendTest, OnceWithNobodyListeningFailsWithNothingSent) {
 
 // The third hub comes up while send waits for it: it gets the fault too.
 TEST_F(HubctlSendTest, WaitForNReadersWaitsForALateOne) {
-  std::vector<ChildProcess> readers;
-  for (int i = 0; i < 2; ++i) readers.push_back(start_reader());
+  std::vector<ChildProcess> readers = start_readers(2);
   await_readers(2);
   ChildProcess send = start_send({"--once", "--wait", "3", "--timeout", "60"});
   // Long enough for send to have matched the first two and be waiting (it would have written by
