@@ -2,6 +2,7 @@
 // readers here are three `hubctl echo` processes (each its own DDS participant, as three hubs'
 // sim bridges are), on /sim/fault as in a fault scenario. And `--wait N` waits for N readers,
 // or fails clearly with nothing sent.
+#include <csignal>
 #include <optional>
 #include <thread>
 
@@ -50,21 +51,22 @@ class HubctlSendTest : public ::testing::Test {
 
   // Waits until the observer has discovered `count` readers of /sim/fault: the hubs are up before
   // anyone sends them a fault. 60 s: start-up under sanitizers on a loaded machine is slow.
-  void await_readers(std::size_t count) {
+  void await_readers(std::size_t count) { await_endpoints(dds::EndpointDirection::kReader, count); }
+
+  void await_endpoints(dds::EndpointDirection direction, std::size_t count) {
     const auto deadline = std::chrono::steady_clock::now() + seconds(60);
-    std::size_t readers = 0;
+    std::size_t found = 0;
     while (std::chrono::steady_clock::now() < deadline) {
       auto snapshot = dds::discover(*observer_);
       ASSERT_TRUE(snapshot) << snapshot.error().message;
-      readers = 0;
+      found = 0;
       for (const auto& e : snapshot->endpoints) {
-        readers +=
-            !e.local && e.direction == dds::EndpointDirection::kReader && e.topic_name == "rt/sim/fault";
+        found += !e.local && e.direction == direction && e.topic_name == "rt/sim/fault";
       }
-      if (readers >= count) return;
+      if (found >= count) return;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    FAIL() << "only " << readers << " of " << count << " readers of /sim/fault started";
+    FAIL() << "only " << found << " of " << count << " endpoints on /sim/fault appeared";
   }
 
   ChildProcess start_send(const std::vector<std::string>& extra) {
@@ -130,6 +132,19 @@ TEST_F(HubctlSendTest, OnceWithNobodyListeningFailsWithNothingSent) {
   EXPECT_TRUE(sent.status.exited_with(1)) << sent.status.describe() << "\n" << sent.output;
   EXPECT_NE(sent.output.find("hubctl send: nobody reads /sim/fault (waited 1.0 s); nothing sent"),
             std::string::npos)
+      << sent.output;
+}
+
+TEST_F(HubctlSendTest, CtrlCWhileWaitingForReadersSaysInterruptedAndExits130) {
+  ChildProcess send = start_send({"--once", "--wait", "2", "--timeout", "120"});
+  // Its writer exists once its Ctrl-C handler does; no reader ever comes, so it is waiting.
+  await_endpoints(dds::EndpointDirection::kWriter, 1);
+  EXPECT_TRUE(send.signal(SIGINT));
+  const Finished sent = finish(send, seconds(60));
+  EXPECT_TRUE(sent.status.exited_with(130)) << sent.status.describe() << "\n" << sent.output;
+  EXPECT_NE(
+      sent.output.find("hubctl send: interrupted while waiting for readers of /sim/fault; nothing sent"),
+      std::string::npos)
       << sent.output;
 }
 
