@@ -99,14 +99,16 @@ nodes:
 
 TEST(HubConfig, InvalidUtf8InAHubFileIsRefused) {
   const fs::path path = fs::temp_directory_path() / fmt::format("hubrt-hub-utf8-{}.yaml", getpid());
-  // A name given in Latin-1 ("dock_\xE9", é) rather than UTF-8.
-  std::ofstream(path) << "hub: dock_ecu\nname: dock_\xE9\nnodes:\n  dock: {type: dock}\n";
+  // A subscription's topic with a Latin-1 "ä" (E4) rather than UTF-8: the loader checks only
+  // that it starts with '/', and the bytes would go on into a DDS topic name.
+  std::ofstream(path) << "hub: dock_ecu\nnodes:\n  dock: {type: dock}\nsubscriptions:\n"
+                         "  rsp: {topic: /rsp_ecu/rsp/st\xE4te, type: hub_msgs/msg/RspState}\n";
   auto config = load_hub_config(path.string());
   fs::remove(path);
-  ASSERT_FALSE(config) << "loaded with name '" << config->name << "'";
+  ASSERT_FALSE(config) << "loaded with topic '" << config->subscriptions.at(0).topic << "'";
   EXPECT_EQ(
       config.error().message,
-      path.string() + ":2:12: not valid UTF-8 (byte 0xE9): configuration files are UTF-8 text (RFC 3629)");
+      path.string() + ":5:31: not valid UTF-8 (byte 0xE4): configuration files are UTF-8 text (RFC 3629)");
 }
 
 // Every file in broken_hubs/ names its expected error in a first line "# expect: <message>".
