@@ -5,6 +5,7 @@
 #include <fstream>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -35,13 +36,15 @@ class HubctlPlayInterruptTest : public ::testing::Test {
   void TearDown() override { fs::remove(scenario_); }
 
   // Starts hubctl play, lets it reach the wait and sends it `sig`.
-  Finished interrupt_with(int sig) {
-    auto child = ChildProcess::start(HUBRT_HUBCTL_PATH, {"play", scenario_.string(), "--timeout", "5"},
-                                     domain_->env());
+  Finished interrupt_with(int sig, const std::vector<std::string>& extra_args = {}) {
+    std::vector<std::string> args = {"play", scenario_.string(), "--timeout", "5"};
+    args.insert(args.end(), extra_args.begin(), extra_args.end());
+    auto child = ChildProcess::start(HUBRT_HUBCTL_PATH, args, domain_->env());
     EXPECT_TRUE(child) << child.error().message;
     if (!child) return {};
-    // The description is printed as the run begins; 20 s covers start-up under sanitizers.
-    EXPECT_TRUE(child->wait_for_output("play: a wait on a station", seconds(20))) << child->stdout_text();
+    // The description ("play: ...") is printed as the run begins, after the Ctrl-C handler is in
+    // place; 20 s covers start-up under sanitizers.
+    EXPECT_TRUE(child->wait_for_output("play: ", seconds(20))) << child->stdout_text();
     // Into the wait step (the outcome is the same if the signal comes before it starts).
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     EXPECT_TRUE(child->signal(sig));
@@ -69,6 +72,18 @@ TEST_F(HubctlPlayInterruptTest, SigtermSaysInterruptedAndExits143) {
   EXPECT_TRUE(f.status.exited_with(143)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("play: interrupted at step 1 of 1 ("), std::string::npos) << f.output;
   EXPECT_EQ(f.output.find("not met within"), std::string::npos) << f.output;
+}
+
+// --rounds 0 runs until Ctrl-C, which ends it as interrupted too (before: "PASSED", exit 0, or a
+// failed step, depending on when the signal came).
+TEST_F(HubctlPlayInterruptTest, RoundsUntilCtrlCEndInterrupted) {
+  std::ofstream(scenario_) << "description: a short sleep, round after round\n"
+                              "steps:\n"
+                              "  - sleep: 0.05\n";
+  const Finished f = interrupt_with(SIGINT, {"--rounds", "0"});
+  EXPECT_TRUE(f.status.exited_with(130)) << f.status.describe() << "\n" << f.output;
+  EXPECT_NE(f.output.find("play: interrupted "), std::string::npos) << f.output;
+  EXPECT_EQ(f.output.find("PASSED"), std::string::npos) << f.output;
 }
 
 }  // namespace

@@ -135,7 +135,8 @@ class ScenarioRunner::Impl {
         ++done;
         std::fflush(out_);
       }
-      if (stop_requested()) {
+      const bool more_rounds = options_.rounds == 0 || round < options_.rounds;
+      if (stop_requested() && more_rounds) {  // all rounds done: it passed, signal or not
         fmt::print(out_, "play: interrupted after round {}; {} step(s) passed in {:.1f} s\n", round, done,
                    since_start());
         std::fflush(out_);
