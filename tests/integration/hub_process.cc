@@ -1,5 +1,7 @@
 #include "hub_process.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 namespace hubrt::integration {
@@ -21,9 +23,13 @@ Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain,
 }
 
 Expected<Finished> run_hubd(const test_support::TestDomain& domain, const std::vector<std::string>& args,
-                            Duration timeout) {
+                            Duration timeout, const test_support::Environment& extra_env) {
   test_support::Environment env = domain.env();
-  env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
+  const bool own_config_dir = std::any_of(extra_env.begin(), extra_env.end(), [](const auto& entry) {
+    return entry.first == "HUBRT_CONFIG_DIR";
+  });
+  if (!own_config_dir) env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
+  env.insert(env.end(), extra_env.begin(), extra_env.end());
   auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
   if (!child) return std::move(child).error();
   auto status = child->wait(timeout);

@@ -35,11 +35,12 @@ class HubProcess {
 };
 
 // Runs hubd to completion with `args` (for configuration errors); returns exit status and output.
+// HUBRT_CONFIG_DIR is the source tree unless `extra_env` sets it.
 struct Finished {
   test_support::ExitStatus status;
   std::string output;
 };
 Expected<Finished> run_hubd(const test_support::TestDomain& domain, const std::vector<std::string>& args,
-                            Duration timeout);
+                            Duration timeout, const test_support::Environment& extra_env = {});
 
 }  // namespace hubrt::integration

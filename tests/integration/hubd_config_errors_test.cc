@@ -79,6 +79,60 @@ TEST_F(HubdConfigErrorsTest, CheckValidatesWithoutRunning) {
   EXPECT_NE(f.output.find("configuration OK: hub 'dock_ecu'"), std::string::npos) << f.output;
 }
 
+TEST_F(HubdConfigErrorsTest, ARepeatedKeyInAHubFileIsRefusedAtItsLine) {
+  const std::string hub =
+      write("dock.yaml", "hub: dock_ecu\nrate_hz: 10\nnodes:\n  dock: {type: dock}\nrate_hz: 500\n");
+  const Finished f = run({"--board", "host-sim", "--hub", hub, "--check"});
+  EXPECT_TRUE(f.status.exited_with(2)) << f.status.describe() << f.output;
+  EXPECT_NE(f.output.find(hub + ":5:1: rate_hz: declared twice (first at line 2)"), std::string::npos)
+      << f.output;
+}
+
+// Anywhere in the file: here in a comment (Latin-1 "Träger"), which hubd used to pass over.
+TEST_F(HubdConfigErrorsTest, InvalidUtf8InAHubFileIsRefusedAtItsLine) {
+  const std::string hub = write("dock.yaml", "hub: dock_ecu\nnodes:\n  dock: {type: dock}  # Tr\xE4ger\n");
+  const Finished f = run({"--board", "host-sim", "--hub", hub, "--check"});
+  EXPECT_TRUE(f.status.exited_with(2)) << f.status.describe() << f.output;
+  EXPECT_NE(f.output.find(hub + ":3:27: not valid UTF-8 (byte 0xE4)"), std::string::npos) << f.output;
+}
+
+TEST_F(HubdConfigErrorsTest, ADirectoryGivenAsHubFileIsSaidToBeOne) {
+  fs::create_directory(dir_ / "dock_ecu.yaml");
+  const std::string hub = (dir_ / "dock_ecu.yaml").string();
+  const Finished f = run({"--board", "host-sim", "--hub", hub, "--check"});
+  EXPECT_TRUE(f.status.exited_with(2)) << f.status.describe() << f.output;
+  EXPECT_NE(f.output.find("hubs file " + hub + ": is a directory, not a file"), std::string::npos)
+      << f.output;
+  EXPECT_EQ(f.output.find("does not exist"), std::string::npos) << f.output;
+}
+
+TEST_F(HubdConfigErrorsTest, ASymbolicLinkLoopGivenAsBoardFileIsSaidToBeOne) {
+  const fs::path a = dir_ / "a.yaml";
+  const fs::path b = dir_ / "b.yaml";
+  fs::create_symlink(b, a);
+  fs::create_symlink(a, b);
+  const Finished f = run({"--board", a.string(), "--hub", "dock_ecu", "--check"});
+  EXPECT_TRUE(f.status.exited_with(2)) << f.status.describe() << f.output;
+  EXPECT_NE(f.output.find("boards file " + a.string() +
+                          ": is a symbolic link loop (too many levels of symbolic links)"),
+            std::string::npos)
+      << f.output;
+}
+
+// Found by name in a search folder: a loop there is reported, not skipped as if absent.
+TEST_F(HubdConfigErrorsTest, ASymbolicLinkLoopInASearchFolderIsReported) {
+  fs::create_directories(dir_ / "boards");
+  const fs::path loop = dir_ / "boards" / "looped.yaml";
+  fs::create_symlink(loop, loop);
+  auto finished = run_hubd(*domain_, {"--board", "looped", "--hub", "dock_ecu", "--check"}, seconds(30),
+                           {{"HUBRT_CONFIG_DIR", dir_.string()}});
+  ASSERT_TRUE(finished) << finished.error().message;
+  EXPECT_TRUE(finished->status.exited_with(2)) << finished->status.describe() << finished->output;
+  EXPECT_NE(finished->output.find("boards file " + loop.string() + ": is a symbolic link loop"),
+            std::string::npos)
+      << finished->output;
+}
+
 TEST_F(HubdConfigErrorsTest, BadCommandLineIsAUsageError) {
   const Finished f = run({"--board", "host-sim", "--backend", "quantum"});
   EXPECT_FALSE(f.status.exited_with(0)) << f.status.describe();

@@ -47,13 +47,18 @@ std::size_t utf8_sequence_length(std::string_view text) noexcept {
   return rule.length;
 }
 
-bool is_valid_utf8(std::string_view text) noexcept {
-  while (!text.empty()) {
-    const std::size_t n = utf8_sequence_length(text);
-    if (n == 0) return false;
-    text.remove_prefix(n);
+std::size_t valid_utf8_prefix(std::string_view text) noexcept {
+  std::size_t offset = 0;
+  while (offset < text.size()) {
+    const std::size_t n = utf8_sequence_length(text.substr(offset));
+    if (n == 0) return offset;
+    offset += n;
   }
-  return true;
+  return offset;
+}
+
+bool is_valid_utf8(std::string_view text) noexcept {
+  return valid_utf8_prefix(text) == text.size();
 }
 
 EscapedUtf8 append_escaped_utf8(std::string_view text, std::span<char> out) noexcept {

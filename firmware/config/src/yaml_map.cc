@@ -10,6 +10,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "hubrt/config/config_file.h"
+
+#include "document_checks.h"
+
 namespace hubrt::config {
 namespace {
 
@@ -39,6 +43,7 @@ YamlMap::YamlMap(std::shared_ptr<const std::string> file, const YAML::Node& node
     : file_(std::move(file)), node_(node), path_(std::move(path)) {}
 
 Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::string& name) {
+  if (auto utf8 = detail::check_utf8(text, name); !utf8) return std::move(utf8).error();
   auto file = std::make_shared<const std::string>(name);
   YAML::Node root;
   try {
@@ -51,10 +56,14 @@ Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::strin
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: expected a mapping at the top level, got {}", name, describe(root)));
   }
+  if (auto unique = detail::check_unique_keys(root, name); !unique) return std::move(unique).error();
   return YamlMap(file, root, "");
 }
 
 Expected<YamlMap> YamlMap::load_file(const std::string& path) {
+  // Before opening: std::ifstream opens a directory without complaint (and reads nothing), and
+  // a symbolic link loop would otherwise read as a file that cannot be opened.
+  if (auto regular = require_regular_file(path); !regular) return std::move(regular).error();
   std::ifstream in(path);
   if (!in) {
     const int err = errno;

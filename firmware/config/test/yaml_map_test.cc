@@ -1,5 +1,11 @@
 #include "hubrt/config/yaml_map.h"
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 namespace hubrt::config {
@@ -50,6 +56,101 @@ TEST(YamlMap, ListsCarryIndexInPath) {
   ASSERT_TRUE(slots);
   ASSERT_EQ(slots->size(), 2u);
   EXPECT_EQ((*slots)[1].string("name").error().message, "cfg.yaml:3:11: slots[1].name: must not be empty");
+}
+
+// yaml-cpp keeps both entries of a repeated key and node["rate_hz"] finds the first: the
+// document is refused instead, at the second one, wherever it is.
+TEST(YamlMap, ARepeatedTopLevelKeyIsRefusedAtItsSecondLine) {
+  auto loaded = YamlMap::load_string("rate_hz: 10\nname: x\nrate_hz: 500\n", "cfg.yaml");
+  ASSERT_FALSE(loaded) << "the second rate_hz was silently ignored";
+  EXPECT_EQ(loaded.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(loaded.error().message, "cfg.yaml:3:1: rate_hz: declared twice (first at line 1)");
+}
+
+TEST(YamlMap, ARepeatedNestedKeyIsRefusedWithItsPath) {
+  auto nested = YamlMap::load_string("a:\n  b:\n    c: 1\n    d: 2\n    c: 3\n", "cfg.yaml");
+  ASSERT_FALSE(nested);
+  EXPECT_EQ(nested.error().message, "cfg.yaml:5:5: a.b.c: declared twice (first at line 3)");
+  auto in_list = YamlMap::load_string("slots:\n  - {name: a, name: b}\n", "cfg.yaml");
+  ASSERT_FALSE(in_list);
+  EXPECT_EQ(in_list.error().message, "cfg.yaml:2:15: slots[0].name: declared twice (first at line 2)");
+  // The same key in two different mappings is no repetition.
+  EXPECT_TRUE(YamlMap::load_string("a: {x: 1}\nb: {x: 2}\n", "cfg.yaml"));
+}
+
+TEST(YamlMap, InvalidUtf8IsRefusedWhereItIs) {
+  // "Grün" in Latin-1 (FC) instead of UTF-8 (C3 BC), in a value on line 2.
+  auto latin1 = YamlMap::load_string("name: dock\ndescription: Gr\xFCn\n", "cfg.yaml");
+  ASSERT_FALSE(latin1) << "invalid UTF-8 was accepted";
+  EXPECT_EQ(latin1.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(latin1.error().message,
+            "cfg.yaml:2:16: not valid UTF-8 (byte 0xFC): configuration files are UTF-8 text (RFC 3629)");
+  // A surrogate (ED A0 80) in a key, after a valid two-byte character: the column counts
+  // characters.
+  auto surrogate = YamlMap::load_string("\xC3\xB6\xED\xA0\x80: 1\n", "cfg.yaml");
+  ASSERT_FALSE(surrogate);
+  EXPECT_TRUE(surrogate.error().message.starts_with("cfg.yaml:1:2: not valid UTF-8 (byte 0xED): "))
+      << surrogate.error().message;
+  // Valid multi-byte text is fine.
+  auto valid = YamlMap::load_string("description: Gr\xC3\xBCn \xF0\x9F\xA4\x96\n", "cfg.yaml");
+  ASSERT_TRUE(valid) << valid.error().message;
+  EXPECT_EQ(*valid->string("description"), "Gr\xC3\xBCn \xF0\x9F\xA4\x96");
+}
+
+// A folder of its own for files the tests make; removed at the end.
+class YamlMapFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / fmt::format("hubrt-yaml-map-{}", getpid());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(YamlMapFiles, ADirectoryIsSaidToBeOne) {
+  const auto folder = dir_ / "dock.yaml";
+  std::filesystem::create_directory(folder);
+  auto loaded = YamlMap::load_file(folder.string());
+  ASSERT_FALSE(loaded);
+  EXPECT_EQ(loaded.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(loaded.error().message, folder.string() + ": is a directory, not a file");
+}
+
+TEST_F(YamlMapFiles, ASymbolicLinkLoopIsSaidToBeOne) {
+  const auto a = dir_ / "a.yaml";
+  const auto b = dir_ / "b.yaml";
+  std::filesystem::create_symlink(b, a);
+  std::filesystem::create_symlink(a, b);
+  auto loaded = YamlMap::load_file(a.string());
+  ASSERT_FALSE(loaded);
+  EXPECT_EQ(loaded.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(loaded.error().message,
+            a.string() + ": is a symbolic link loop (too many levels of symbolic links)");
+}
+
+TEST_F(YamlMapFiles, MissingFilesAndDanglingLinksDoNotExist) {
+  const auto missing = dir_ / "missing.yaml";
+  auto loaded = YamlMap::load_file(missing.string());
+  ASSERT_FALSE(loaded);
+  EXPECT_EQ(loaded.error().code, ErrorCode::kNotFound);
+  EXPECT_EQ(loaded.error().message, missing.string() + ": does not exist");
+  const auto link = dir_ / "link.yaml";
+  std::filesystem::create_symlink(missing, link);
+  auto dangling = YamlMap::load_file(link.string());
+  ASSERT_FALSE(dangling);
+  EXPECT_EQ(dangling.error().code, ErrorCode::kNotFound);
+  EXPECT_EQ(dangling.error().message, fmt::format("{}: is a symbolic link to '{}', which does not exist",
+                                                  link.string(), missing.string()));
+}
+
+TEST_F(YamlMapFiles, AFileWithInvalidUtf8IsRefused) {
+  const auto path = dir_ / "hub.yaml";
+  std::ofstream(path) << "hub: dock_ecu\n# comment\nname: \xC0\xAF\n";
+  auto loaded = YamlMap::load_file(path.string());
+  ASSERT_FALSE(loaded);
+  EXPECT_TRUE(loaded.error().message.starts_with(path.string() + ":3:7: not valid UTF-8 (byte 0xC0): "))
+      << loaded.error().message;
 }
 
 }  // namespace

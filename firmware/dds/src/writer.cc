@@ -1,5 +1,8 @@
 #include "hubrt/dds/writer.h"
 
+#include <chrono>
+#include <string>
+
 #include "hubrt/dds/retcode.h"
 #include "hubrt/dds/sample.h"
 
@@ -38,6 +41,24 @@ Result<std::uint32_t> UntypedWriter::matched_readers() const noexcept {
 Expected<void> UntypedWriter::wait_for_readers(std::uint32_t count, Duration timeout) const {
   return detail::wait_for_matched(handle_.get(), detail::EndpointKind::kWriter, count, timeout,
                                   "wait for readers of writer on '" + topic_name_ + "'");
+}
+
+Expected<void> UntypedWriter::wait_for_acks(Duration timeout) const {
+  // dds.h: dds_wait_for_acks "blocks the calling thread until either all data written by the
+  // publisher or writer is acknowledged by all matched reliable reader entities, or else the
+  // duration specified by the timeout parameter elapses" (DDS_RETCODE_TIMEOUT).
+  const dds_return_t rc = dds_wait_for_acks(handle_.get(), timeout.count());
+  if (rc == DDS_RETCODE_TIMEOUT) {
+    const Result<std::uint32_t> matched = matched_readers();
+    return make_error(
+        ErrorCode::kTimeout,
+        "wait for acknowledgements on '" + topic_name_ + "': not every one of the " +
+            std::to_string(matched.is_ok() ? matched.value() : 0) +
+            " matched reader(s) acknowledged within " +
+            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(timeout).count()) + " ms");
+  }
+  if (rc < 0) return dds_error(rc, "wait for acknowledgements on '" + topic_name_ + "'");
+  return {};
 }
 
 }  // namespace hubrt::dds

@@ -1,5 +1,6 @@
 // hubctl play FILE: run a scenario — commands as the planner sends them, waits on States, acts on
-// the simulated world — and report each step; the exit code says whether all passed.
+// the simulated world — and report each step; the exit code says whether all passed (0), a step
+// failed (1), the file is wrong (2) or Ctrl-C/SIGTERM stopped the run (130/143).
 #include <fmt/format.h>
 
 #include "commands.h"
@@ -41,7 +42,15 @@ int run_play(const PlayCommandOptions& options) {
   play.rounds = options.rounds;
   play.quiet = options.quiet;
   ScenarioRunner runner(*participant, *scenario, play, stdout);
-  return runner.run() ? kExitOk : kExitFailed;
+  switch (runner.run()) {
+    case PlayOutcome::kPassed:
+      return kExitOk;
+    case PlayOutcome::kFailed:
+      return kExitFailed;
+    case PlayOutcome::kInterrupted:
+      return interrupted_exit_status();
+  }
+  return kExitFailed;
 }
 
 }  // namespace
@@ -51,6 +60,10 @@ void add_play_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("play",
                                      "Run a scenario (YAML steps: commands, waits on States, sim actions) "
                                      "and report each step");
+  cmd->footer(
+      "Exit status: 0 every step passed; 1 a step failed; 2 the scenario file or the options are wrong; "
+      "130 (143) interrupted by Ctrl-C (SIGTERM): the step cut short is reported as STOP and the run as "
+      "\"play: interrupted at step N\", never as failed.");
   cmd->add_option("file", options->file, "Scenario file, e.g. hubs/station/scenarios/use-case.yaml")
       ->required();
   cmd->add_option("--rate,-r", options->rate_hz, "Command repeat rate in Hz (default: the scenario's)")

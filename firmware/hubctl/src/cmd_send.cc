@@ -1,5 +1,8 @@
 // hubctl send TOPIC FIELD=VALUE...: publish a command the way the planner does — the same
-// wanted state, again and again at a fixed rate, until stopped.
+// wanted state, again and again at a fixed rate, until stopped. With --once or --count the
+// samples are not repeated for ever, so each must reach every reader: send waits for the readers
+// first (--wait N of them, or until discovery settles) and, before it exits, for every reader to
+// acknowledge what it wrote.
 #include <thread>
 
 #include <fmt/format.h>
@@ -11,6 +14,7 @@
 #include "hubrt/msgs/set_field.h"
 
 #include "commands.h"
+#include "reader_wait.h"
 #include "render.h"
 #include "session.h"
 
@@ -25,8 +29,15 @@ struct SendOptions {
   double rate_hz = 10.0;
   std::size_t count = 0;  // 0 = until stopped
   bool once = false;
+  std::uint32_t wait_readers = 0;  // 0: every reader discovery finds
   bool quiet = false;
 };
+
+// Until stopped, a reader that matches late gets the next sample; a limited run must have its
+// readers before the first sample goes out, and waits for their acknowledgements at the end.
+std::size_t sample_limit(const SendOptions& options) {
+  return options.once ? 1 : options.count;
+}
 
 int run_send(const SendOptions& options) {
   install_stop_handler();
@@ -76,18 +87,32 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: {}\n", writer.error().message);
     return kExitFailed;
   }
-  if (auto matched = writer->wait_for_readers(1, seconds(options.domain.timeout_s)); !matched) {
-    fmt::print(stderr, "hubctl send: warning: {}; sending anyway\n", matched.error().message);
+  const std::size_t limit = sample_limit(options);
+  ReaderWait wait;
+  wait.wanted = options.wait_readers;
+  wait.settle = limit != 0;
+  wait.timeout = seconds(options.domain.timeout_s);
+  auto readers = wait_for_readers(*writer, wait, *ros_name);
+  if (!readers) {
+    if (limit != 0 || options.wait_readers > 0) {
+      fmt::print(stderr, "hubctl send: {}; nothing sent\n", readers.error().message);
+      return kExitFailed;
+    }
+    fmt::print(stderr, "hubctl send: warning: {}; sending anyway\n", readers.error().message);
+  } else if (readers->interrupted) {
+    fmt::print(stderr, "hubctl send: interrupted while waiting for readers of {}; nothing sent\n", *ros_name);
+    return interrupted_exit_status();
   }
   if (!options.quiet)
     fmt::print("sending {} ({}) at {} Hz:\n{}", *ros_name, info.ros_name, options.rate_hz,
                render_human(filled));
   std::fflush(stdout);
 
-  const std::size_t limit = options.once ? 1 : options.count;
   const Duration period = seconds(1.0 / options.rate_hz);
   auto next = std::chrono::steady_clock::now();
   std::size_t sent = 0;
+  // Readers that finish with the sample (echo --count 1) leave before the end: count them now.
+  const Result<std::uint32_t> matched = writer->matched_readers();
   while (!stop_requested() && (limit == 0 || sent < limit)) {
     if (auto status = writer->write(sample.data()); !status.is_ok()) {
       fmt::print(stderr, "hubctl send: write failed: {}\n", to_string(status.code()));
@@ -97,9 +122,18 @@ int run_send(const SendOptions& options) {
     next += period;
     std::this_thread::sleep_until(next);
   }
-  if (!options.quiet) fmt::print("sent {} sample(s)\n", sent);
-  // Give reliable delivery a moment before the writer goes away with the process.
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (limit != 0 && sent < limit) {
+    fmt::print(stderr, "hubctl send: interrupted after {} of {} sample(s)\n", sent, limit);
+    return interrupted_exit_status();
+  }
+  // The writer goes away with the process, and with it any retransmission a reader still needs.
+  if (auto acked = writer->wait_for_acks(seconds(options.domain.timeout_s)); !acked) {
+    fmt::print(stderr, "hubctl send: sent {} sample(s) but {}\n", sent, acked.error().message);
+    return kExitFailed;
+  }
+  if (!options.quiet)
+    fmt::print("sent {} sample(s) to {} reader(s); all acknowledged\n", sent,
+               matched.is_ok() ? matched.value() : 0);
   return kExitOk;
 }
 
@@ -109,12 +143,27 @@ void add_send_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<SendOptions>();
   CLI::App* cmd =
       app.add_subcommand("send", "Publish a command repeatedly at a fixed rate, as the planner does");
+  cmd->footer(
+      "Exit status: 0 sent (with --once/--count: and acknowledged by every matched reader); 1 no reader, "
+      "fewer than --wait N readers, a write failed or a reader did not acknowledge within --timeout; "
+      "2 bad arguments, unknown topic or type; 130 (143) Ctrl-C (SIGTERM) before --once/--count was "
+      "done. Without --once/--count, Ctrl-C is the normal end (0).");
   cmd->add_option("topic", options->topic, "ROS topic name, e.g. /dock/command")->required();
   cmd->add_option("fields", options->assignments, "FIELD=VALUE, e.g. target_name=dock action=monitor");
   cmd->add_option("--type", options->type, "Message type, when no hub has announced the topic yet");
   cmd->add_option("--rate,-r", options->rate_hz, "Samples per second")->check(CLI::Range(0.01, 10000.0));
-  cmd->add_option("--count,-n", options->count, "Stop after this many samples (default: until Ctrl-C)");
-  cmd->add_flag("--once", options->once, "Send one sample and stop");
+  cmd->add_option("--count,-n", options->count,
+                  "Stop after this many samples (default: until Ctrl-C); waits for readers and "
+                  "acknowledgements as --once does");
+  cmd->add_flag("--once", options->once,
+                "Send one sample and stop. Waits for readers first: for --wait N of them, else for one "
+                "and then until no new reader has matched for 0.5 s (at most --timeout); exits 1 when "
+                "none is there. Before exiting, waits (at most --timeout) until every matched reader "
+                "acknowledged the sample; exits 1 if one did not");
+  cmd->add_option("--wait", options->wait_readers,
+                  "Wait until N readers are matched before sending (e.g. one per hub); exit 1 with "
+                  "nothing sent if fewer match within --timeout")
+      ->check(CLI::Range(1U, 1000U));
   cmd->add_flag("--quiet,-q", options->quiet, "Print nothing but errors");
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_send(*options); });

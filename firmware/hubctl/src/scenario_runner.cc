@@ -94,10 +94,14 @@ class ScenarioRunner::Impl {
         out_(out),
         period_(seconds(1.0 / (options.rate_hz > 0 ? options.rate_hz : scenario.rate_hz))) {}
 
-  bool run() {
+  PlayOutcome run() {
     const auto start = SteadyClock::now();
+    const auto since_start = [&start] {
+      return std::chrono::duration<double>(SteadyClock::now() - start).count();
+    };
     if (!scenario_.description.empty() && !options_.quiet)
       fmt::print(out_, "play: {}\n", scenario_.description);
+    std::fflush(out_);  // a pipe or a file sees the run begin, not only its first step's end
     next_send_ = SteadyClock::now();
     std::size_t done = 0;
     for (int round = 1; options_.rounds == 0 || round <= options_.rounds; ++round) {
@@ -105,29 +109,45 @@ class ScenarioRunner::Impl {
       for (std::size_t i = 0; i < scenario_.steps.size(); ++i) {
         const Step& step = scenario_.steps[i];
         const auto step_start = SteadyClock::now();
-        StepResult result = stop_requested() ? failed("interrupted") : execute(step);
+        StepResult result = stop_requested() ? failed("") : execute(step);
         const double took = std::chrono::duration<double>(SteadyClock::now() - step_start).count();
+        // A step that did not pass because Ctrl-C cut it short (a wait that stopped waiting) has
+        // not failed: what it waited for may still have come.
+        const bool interrupted = !result.ok && stop_requested();
         if (!result.ok || !options_.quiet) {
-          fmt::print(out_, "  {}  {:6.2f} s  [{:>3}] {}  {}\n", result.ok ? "PASS" : "FAIL", took, i + 1,
-                     step.where, step.describe());
+          fmt::print(out_, "  {}  {:6.2f} s  [{:>3}] {}  {}\n",
+                     result.ok ? "PASS" : (interrupted ? "STOP" : "FAIL"), took, i + 1, step.where,
+                     step.describe());
+        }
+        if (interrupted) {
+          fmt::print(out_, "play: interrupted at step {} of {} ({}){} after {:.1f} s; {} step(s) passed\n",
+                     i + 1, scenario_.steps.size(), step.where,
+                     options_.rounds != 1 ? fmt::format(" in round {}", round) : std::string(), since_start(),
+                     done);
+          std::fflush(out_);
+          return PlayOutcome::kInterrupted;
         }
         if (!result.ok) {
           fmt::print(out_, "{}", indent(result.detail, "        "));
           fmt::print(out_, "play: FAILED at step {} of {} ({}) after {:.1f} s\n", i + 1,
-                     scenario_.steps.size(), step.where,
-                     std::chrono::duration<double>(SteadyClock::now() - start).count());
+                     scenario_.steps.size(), step.where, since_start());
           std::fflush(out_);
-          return false;
+          return PlayOutcome::kFailed;
         }
         ++done;
         std::fflush(out_);
       }
-      if (stop_requested()) break;
+      const bool more_rounds = options_.rounds == 0 || round < options_.rounds;
+      if (stop_requested() && more_rounds) {  // all rounds done: it passed, signal or not
+        fmt::print(out_, "play: interrupted after round {}; {} step(s) passed in {:.1f} s\n", round, done,
+                   since_start());
+        std::fflush(out_);
+        return PlayOutcome::kInterrupted;
+      }
     }
-    fmt::print(out_, "play: PASSED: {} step(s) in {:.1f} s\n", done,
-               std::chrono::duration<double>(SteadyClock::now() - start).count());
+    fmt::print(out_, "play: PASSED: {} step(s) in {:.1f} s\n", done, since_start());
     std::fflush(out_);
-    return true;
+    return PlayOutcome::kPassed;
   }
 
  private:
@@ -545,7 +565,7 @@ ScenarioRunner::ScenarioRunner(const dds::Participant& participant, const Scenar
 
 ScenarioRunner::~ScenarioRunner() = default;
 
-bool ScenarioRunner::run() {
+PlayOutcome ScenarioRunner::run() {
   return impl_->run();
 }
 

@@ -3,6 +3,7 @@
 // to meet conditions, acts on the simulated world, and reports every step.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 
@@ -20,6 +21,12 @@ struct PlayOptions {
   bool quiet = false;                                     // report failures and the summary only
 };
 
+enum class PlayOutcome : std::uint8_t {
+  kPassed,       // every step of every round passed
+  kFailed,       // a step failed (its report says why)
+  kInterrupted,  // SIGINT/SIGTERM (stop_requested) stopped the run before it was done
+};
+
 // Not thread-safe; one run at a time.
 class ScenarioRunner {
  public:
@@ -30,11 +37,12 @@ class ScenarioRunner {
   ScenarioRunner(const ScenarioRunner&) = delete;
   ScenarioRunner& operator=(const ScenarioRunner&) = delete;
 
-  // Runs the steps in order (all rounds), stopping at the first that fails or on Ctrl-C.
-  // Returns true when every step passed. Each step is reported as it ends: PASS/FAIL, the time it
-  // took, where it is in the file and what it does; a failed wait also shows what did not hold
-  // and the last State received.
-  bool run();
+  // Runs the steps in order (all rounds), stopping at the first that fails or on Ctrl-C. Each
+  // step is reported as it ends: PASS/FAIL, the time it took, where it is in the file and what it
+  // does; a failed wait also shows what did not hold and the last State received. A step cut
+  // short by Ctrl-C is reported as STOP, never as a failed wait, and the run ends with
+  // "play: interrupted at step ..." (kInterrupted), also with --rounds 0.
+  PlayOutcome run();
 
  private:
   class Impl;

@@ -16,8 +16,11 @@ namespace hubrt::hubctl {
 namespace {
 
 std::atomic<bool> g_stop{false};
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "stored from a signal handler");
 
-extern "C" void on_stop_signal(int /*signal*/) {
+extern "C" void on_stop_signal(int signal) {
+  g_stop_signal.store(signal);
   g_stop.store(true);
 }
 
@@ -35,6 +38,11 @@ void add_domain_options(CLI::App& app, DomainOptions& options) {
 
 bool stop_requested() noexcept {
   return g_stop.load();
+}
+
+int interrupted_exit_status() noexcept {
+  const int signal = g_stop_signal.load();
+  return 128 + (signal != 0 ? signal : SIGINT);
 }
 
 void install_stop_handler() {

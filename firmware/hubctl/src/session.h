@@ -32,6 +32,11 @@ inline constexpr int kExitUsage = exit_codes::kUsage;     // bad arguments, unkn
 // Set by SIGINT/SIGTERM; loops check it.
 bool stop_requested() noexcept;
 void install_stop_handler();
+// The exit status of a command that SIGINT or SIGTERM stopped before it was done (a scenario, a
+// wait for readers): 128 + the signal number, as a shell reports a program the signal ended —
+// 130 for Ctrl-C, 143 for SIGTERM. Commands that run until stopped (echo, hz, watch, send without
+// --once/--count) end normally on the signal and exit 0.
+int interrupted_exit_status() noexcept;
 
 Expected<dds::Participant> join_domain(const DomainOptions& options, std::string_view name);
 

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "hubrt/config/config_file.h"
+
 namespace hubrt::hubd {
 namespace fs = std::filesystem;
 
@@ -25,9 +27,13 @@ std::vector<std::string> search_folders(const std::string& kind) {
 
 Expected<std::string> find_config_file(const std::string& kind, const std::string& name_or_path) {
   std::error_code ec;
+  // A bare name is a file in the current folder only when it is one: `--hub dock_ecu` run from
+  // hubs/ (where dock_ecu is a folder) still means the hub type.
   if (name_or_path.find('/') != std::string::npos || fs::is_regular_file(name_or_path, ec)) {
-    if (fs::is_regular_file(name_or_path, ec)) return name_or_path;
-    return make_error(ErrorCode::kNotFound, fmt::format("{} file '{}' does not exist", kind, name_or_path));
+    auto usable = config::require_regular_file(name_or_path);
+    if (!usable)
+      return make_error(usable.error().code, fmt::format("{} file {}", kind, usable.error().message));
+    return name_or_path;
   }
   std::vector<std::string> tried;
   for (const std::string& folder : search_folders(kind)) {
@@ -36,7 +42,13 @@ Expected<std::string> find_config_file(const std::string& kind, const std::strin
       candidates.push_back(fmt::format("{}/{}/{}.yaml", folder, name_or_path, name_or_path));
     candidates.push_back(fmt::format("{}/{}.yaml", folder, name_or_path));
     for (const std::string& candidate : candidates) {
-      if (fs::is_regular_file(candidate, ec)) return candidate;
+      auto usable = config::require_regular_file(candidate);
+      if (usable) return candidate;
+      // Only a file that is not there sends the search on; one that is there but cannot be used
+      // (a directory, a link loop) is what the user meant, and its problem is the answer.
+      if (usable.error().code != ErrorCode::kNotFound) {
+        return make_error(usable.error().code, fmt::format("{} file {}", kind, usable.error().message));
+      }
       tried.push_back(candidate);
     }
   }

@@ -32,7 +32,6 @@ Expected<std::vector<std::string>> parse_hubs(const YamlMap& root) {
 }
 
 Expected<BoardConfig> parse_checked_board(const YamlMap& root) {
-  if (auto ok = board_detail::check_no_duplicate_keys(root); !ok) return std::move(ok).error();
   if (auto ok =
           root.only_keys({"board", "description", "arch", "hub", "gpio", "can", "modbus", "simulation"});
       !ok) {

@@ -24,10 +24,6 @@ bool valid_identifier(std::string_view name) noexcept;
 // "input 'x' (line 9)": how messages refer to an earlier declaration.
 std::string declared_at(std::string_view what, std::string_view name, SourceLocation where);
 
-// Fails on the first mapping anywhere in the document that has the same key twice (yaml-cpp keeps
-// both and a look-up would silently see only the first).
-Expected<void> check_no_duplicate_keys(const YamlMap& root);
-
 Expected<void> parse_gpio(const YamlMap& gpio, BoardConfig& board);
 Expected<void> parse_can(const YamlMap& root, BoardConfig& board);
 // TCP port 0 (picked by the simulator) is accepted on simulation boards only.

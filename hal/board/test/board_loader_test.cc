@@ -177,7 +177,7 @@ TEST(BoardLoader, MissingFileIsNotFound) {
   auto loaded = load_board("no/such/board.yaml");
   ASSERT_FALSE(loaded.is_ok());
   EXPECT_EQ(loaded.error().code, ErrorCode::kNotFound);
-  EXPECT_THAT(loaded.error().message, ::testing::StartsWith("no/such/board.yaml: cannot open"));
+  EXPECT_THAT(loaded.error().message, ::testing::StartsWith("no/such/board.yaml: does not exist"));
 }
 
 }  // namespace

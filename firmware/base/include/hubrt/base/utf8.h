@@ -17,6 +17,11 @@ namespace hubrt {
 // them check for them themselves. Allocation-free; thread-safe.
 bool is_valid_utf8(std::string_view text) noexcept;
 
+// Length of the longest prefix of `text` that is valid UTF-8: text.size() when all of it is,
+// else the offset of the first byte of the first invalid (or truncated) sequence (configuration
+// files report where the bad text starts). Never allocates; thread-safe.
+[[nodiscard]] std::size_t valid_utf8_prefix(std::string_view text) noexcept;
+
 // Length in bytes (1..4) of the well-formed UTF-8 sequence at the start of `text`, or 0 when
 // `text` is empty or does not start with one. Allocation-free; thread-safe.
 std::size_t utf8_sequence_length(std::string_view text) noexcept;

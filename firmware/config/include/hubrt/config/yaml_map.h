@@ -19,9 +19,15 @@ namespace hubrt::config {
 class YamlMap {
  public:
   // Parses a file whose top level must be a mapping. Errors name the file (and the line for syntax
-  // errors). kNotFound when the file does not exist.
+  // errors). The file must be a regular file (require_regular_file: kNotFound when it does not
+  // exist; a directory or a symbolic link loop says so), and the document must pass the checks
+  // of load_string.
   static Expected<YamlMap> load_file(const std::string& path);
-  // Same, for text already in memory; `name` stands in for the file name in messages.
+  // Same, for text already in memory; `name` stands in for the file name in messages. Refused
+  // (kInvalidArgument, located at file:line:column): text that is not strict UTF-8 (RFC 3629,
+  // anywhere, comments included), a YAML syntax error, a top level that is not a mapping, and a
+  // mapping anywhere in the document that has the same key twice (yaml-cpp would keep both and
+  // every look-up would see only the first).
   static Expected<YamlMap> load_string(const std::string& text, const std::string& name);
 
   [[nodiscard]] const std::string& file() const { return *file_; }

@@ -42,6 +42,13 @@ class UntypedWriter {
   // tools, not for the cycle. Errors: kTimeout naming the topic and how many matched.
   Expected<void> wait_for_readers(std::uint32_t count, Duration timeout) const;
 
+  // Blocks until every reliable reader matched now has acknowledged every sample written so far
+  // (dds_wait_for_acks), or `timeout` passes; returns at once when no reader is matched. For
+  // tools that write and then exit: the writer's end would otherwise cut off retransmissions.
+  // Not for the cycle. Errors: kTimeout naming the topic and how many readers are matched;
+  // Cyclone's code for a deleted writer.
+  Expected<void> wait_for_acks(Duration timeout) const;
+
   [[nodiscard]] dds_entity_t handle() const noexcept { return handle_.get(); }
   [[nodiscard]] const std::string& topic_name() const noexcept { return topic_name_; }
 

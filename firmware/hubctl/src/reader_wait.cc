@@ -1,0 +1,50 @@
+#include "reader_wait.h"
+
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "session.h"
+
+namespace hubrt::hubctl {
+
+Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
+                                          const std::string& ros_topic) {
+  using Clock = std::chrono::steady_clock;
+  constexpr auto kPoll = std::chrono::milliseconds(5);
+  const auto start = Clock::now();
+  const auto deadline = start + wait.timeout;
+  std::uint32_t seen = 0;
+  auto last_change = start;
+  for (;;) {
+    const Result<std::uint32_t> matched = writer.matched_readers();
+    if (!matched.is_ok()) {
+      return make_error(matched.status().code(), fmt::format("cannot count the readers of {}: {}", ros_topic,
+                                                             to_string(matched.status().code())));
+    }
+    const auto now = Clock::now();
+    if (matched.value() != seen) {
+      seen = matched.value();
+      last_change = now;
+    }
+    if (wait.wanted > 0) {
+      if (seen >= wait.wanted) return ReadersMatched{seen, false};
+    } else if (seen > 0 && (!wait.settle || now - last_change >= wait.quiet)) {
+      return ReadersMatched{seen, false};
+    }
+    if (stop_requested()) return ReadersMatched{seen, true};
+    if (now >= deadline) {
+      if (wait.wanted > 0) {
+        return make_error(ErrorCode::kTimeout,
+                          fmt::format("only {} of {} reader(s) of {} matched within {:.1f} s", seen,
+                                      wait.wanted, ros_topic, to_seconds(wait.timeout)));
+      }
+      if (seen > 0) return ReadersMatched{seen, false};
+      return make_error(ErrorCode::kTimeout, fmt::format("nobody reads {} (waited {:.1f} s)", ros_topic,
+                                                         to_seconds(wait.timeout)));
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+}
+
+}  // namespace hubrt::hubctl

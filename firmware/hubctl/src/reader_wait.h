@@ -1,0 +1,39 @@
+// Before `hubctl send` writes a sample it will not repeat (--once, --count), every reader that
+// should get it must be matched: a volatile writer's sample never reaches a reader matched
+// after it was written. With several hubs on the domain their readers match one by one, so
+// "the first reader matched" is not "everyone is there".
+#pragma once
+
+#include <cstdint>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/dds/writer.h"
+
+namespace hubrt::hubctl {
+
+struct ReaderWait {
+  // > 0: wait for this many matched readers (--wait N). 0: for one, then, when `settle`, until
+  // no further reader has matched for `quiet`.
+  std::uint32_t wanted = 0;
+  bool settle = false;
+  // Discovery answers within milliseconds on a LAN; a reader that has not matched half a second
+  // after the last one did is not on its way. Generous for loaded machines, short for people.
+  Duration quiet = std::chrono::milliseconds(500);
+  Duration timeout = std::chrono::seconds(5);
+};
+
+struct ReadersMatched {
+  std::uint32_t count = 0;
+  bool interrupted = false;  // SIGINT/SIGTERM arrived while waiting
+};
+
+// Polls `writer`'s matched-reader count (every 5 ms) as `wait` asks, until satisfied, stopped by
+// SIGINT/SIGTERM (stop_requested) or `wait.timeout` passes. Settling that runs into the timeout
+// with at least one reader matched counts as done.
+// Errors: kTimeout "only <n> of <wanted> reader(s) of <topic> matched within <t> s" (--wait), or
+// "nobody reads <topic> (waited <t> s)"; Cyclone's code for a deleted writer.
+Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
+                                          const std::string& ros_topic);
+
+}  // namespace hubrt::hubctl
