@@ -3,6 +3,7 @@
 //   hubd --board host-sim --hub dock_ecu              simulated Dock ECU on this machine
 //   hubd --board rpi4-dock-ecu                       the real thing (backend from the board)
 //   hubd --board host-sim --hub dock_ecu --check      validate the files and exit
+//   hubd --board rpi4-rsp-ecu --hub rsp_ecu --safe-outputs   drive the outputs safe and exit
 #include <csignal>
 
 #include <CLI/CLI.hpp>
@@ -15,7 +16,9 @@
 #include "hubrt/runtime/cycle_runner.h"
 
 #include "config_files.h"
+#include "crash_handlers.h"
 #include "logging.h"
+#include "safe_outputs.h"
 #include "systemd_notifier.h"
 
 namespace hubrt::hubd {
@@ -32,6 +35,7 @@ struct Options {
   std::optional<double> rate_hz;
   std::string log_level = "info";
   bool check_only = false;
+  bool safe_outputs = false;
 };
 
 // Exit codes: 0 clean stop, 1 runtime failure, 2 bad command line or configuration.
@@ -104,6 +108,8 @@ int run(const Options& options) {
   if (!hub_file) return fail(hub_file.error().message, kExitConfig);
   auto backend = backend_kind(options, *board_file);
   if (!backend) return fail(backend.error().message, kExitConfig);
+  if (options.safe_outputs) return run_safe_outputs({*board_file, *hub_file, *backend}, **logger);
+  install_crash_handlers();
   auto domain = domain_config(options);
   if (!domain) return fail(domain.error().message, kExitConfig);
 
@@ -178,7 +184,13 @@ int main(int argc, char** argv) {
   app.add_option("--rate", options.rate_hz, "Cycle and heartbeat rate in Hz, overriding the hub file's")
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
-  app.add_flag("--check", options.check_only, "Load and validate the board and hub files, then exit");
+  auto* check =
+      app.add_flag("--check", options.check_only, "Load and validate the board and hub files, then exit");
+  app.add_flag(
+         "--safe-outputs", options.safe_outputs,
+         "Drive the hub's GPIO outputs to their safe levels, then exit (no DDS; the unit's ExecStopPost). "
+         "Exit 0: all safe; 1: some not (named in the log); 2: bad board or hub file")
+      ->excludes(check);
   CLI11_PARSE(app, argc, argv);
   return hubrt::hubd::run(options);
 }
