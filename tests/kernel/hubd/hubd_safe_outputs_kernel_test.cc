@@ -149,15 +149,17 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
     ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
+    // A command written before hubd's reader matched would be lost.
+    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
     // hubd requested the switch with a pull-down bias; air comes after that.
     ASSERT_TRUE(set_pull(chip(), kPressureLine, Pull::kUp));
     const auto deadline = steady_clock::now() + kPatience;
     bool released = false;
     for (int round = 0; steady_clock::now() < deadline && !released; ++round) {
-      // A few resets first (the pressure failure latched before the air came), then the command.
-      send(round < 5 ? "reset" : "lock", "release");
+      // Resets clear the pressure failure latched before the air came (a reset leaves the
+      // gripper as it is); the commands in between open the gripper.
+      send(round % 4 == 0 ? "reset" : "lock", "release");
       std::this_thread::sleep_for(milliseconds(200));
-      if (round < 5) continue;
       auto gripper = read_value(chip(), kGripperValveLine);
       released = gripper && *gripper == 0;
     }
