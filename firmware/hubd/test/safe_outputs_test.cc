@@ -42,6 +42,7 @@ Loaded load(const std::string& board, const std::string& hub) {
 
 std::vector<std::string> signals(const std::vector<hal::DigitalOutputConfig>& outputs) {
   std::vector<std::string> out;
+  out.reserve(outputs.size());
   for (const auto& o : outputs) out.push_back(o.signal);
   return out;
 }
