@@ -3,6 +3,7 @@
 //   hubd --board host-sim --hub dock_ecu              simulated Dock ECU on this machine
 //   hubd --board rpi4-dock-ecu                       the real thing (backend from the board)
 //   hubd --board host-sim --hub dock_ecu --check      validate the files and exit
+//   hubd --board rpi4-rsp-ecu --hub rsp_ecu --safe-outputs   drive the outputs safe and exit
 //
 // Exit statuses: hubrt/base/exit_codes.h. Every stop signal (runtime::stop_signals()) ends the
 // cycle, drives the outputs safe, then exits: 0 for SIGTERM/SIGINT, 128+N for signal N otherwise.
@@ -20,7 +21,9 @@
 #include "hubrt/runtime/cycle_runner.h"
 
 #include "config_files.h"
+#include "crash_handlers.h"
 #include "logging.h"
+#include "safe_outputs.h"
 #include "systemd_notifier.h"
 
 namespace hubrt::hubd {
@@ -37,6 +40,7 @@ struct Options {
   std::optional<double> rate_hz;
   std::string log_level = "info";
   bool check_only = false;
+  bool safe_outputs = false;
 };
 
 // The exit statuses are the table of hubrt/base/exit_codes.h, shared with hubctl.
@@ -99,6 +103,8 @@ int run(const Options& options) {
   if (!hub_file) return fail(hub_file.error().message, kExitConfig);
   auto backend = backend_kind(options, *board_file);
   if (!backend) return fail(backend.error().message, kExitConfig);
+  if (options.safe_outputs) return run_safe_outputs({*board_file, *hub_file, *backend}, **logger);
+  install_crash_handlers();
   auto domain = domain_config(options);
   if (!domain) return fail(domain.error().message, kExitConfig);
 
@@ -194,15 +200,21 @@ int main(int argc, char** argv) {
   app.add_option("--rate", options.rate_hz, "Cycle and heartbeat rate in Hz, overriding the hub file's")
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
-  app.add_flag("--check", options.check_only,
-               "Load and validate the board and hub files and the hub's needs against the board, then exit; "
-               "opens no device and no network");
+  auto* check =
+      app.add_flag("--check", options.check_only,
+                   "Load and validate the board and hub files and the hub's needs against the board, "
+                   "then exit; opens no device and no network");
+  app.add_flag(
+         "--safe-outputs", options.safe_outputs,
+         "Drive the hub's GPIO outputs to their safe levels, then exit (no DDS; the unit's ExecStopPost). "
+         "Exit 0: all safe; 1: some not (named in the log); 2: bad board or hub file")
+      ->excludes(check);
   app.footer(hubrt::exit_codes::kHelpFooter);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11's own codes (105 validation, 106 required, 109 extras...) mean "bad command line":
-    // the table's 2, which the systemd unit does not restart. --help exits 0.
+    // CLI11's own codes (105 validation, 106 required, 108 excludes, 109 extras...) mean "bad
+    // command line": the table's 2, which the systemd unit does not restart. --help exits 0.
     return app.exit(e) == 0 ? hubrt::exit_codes::kOk : hubrt::exit_codes::kUsage;
   }
   return hubrt::hubd::run(options);

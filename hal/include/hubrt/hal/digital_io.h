@@ -31,6 +31,11 @@ struct DigitalOutputConfig {
   Polarity polarity = Polarity::kActiveHigh;
   bool initial = false;  // logical level driven when the line is opened
   bool safe = false;     // logical level driven by write_safe() (fault, shutdown)
+  // Also pull the line toward its safe level (Linux: the request's bias flag), so that it stays
+  // there once this process releases it, on drivers that keep a released line's bias (gpio-sim;
+  // the Raspberry Pi's pinctrl turns a released line into an input with its pull). For
+  // `hubd --safe-outputs`, which exits after driving the outputs; the fake backend ignores it.
+  bool bias_toward_safe = false;
 };
 
 // One input line. Not thread-safe: owned and read by one cycle.

@@ -111,7 +111,10 @@ Expected<void> request_line(const LineHandle& handle, std::string_view signal, i
   const gpiod_line_request_config config{kGpioConsumer, request_type, flags};
   errno = 0;
   if (gpiod_line_request(handle.line(), &config, default_value) == 0) return {};
-  const int err = errno;
+  return request_error(handle, signal, flags, errno);
+}
+
+Error request_error(const LineHandle& handle, std::string_view signal, int flags, int err) {
   switch (err) {
     case EBUSY: {
       // The cached line info is from when we looked the line up: refresh it to name the holder.

@@ -28,6 +28,7 @@ class LineHandle {
   ~LineHandle();
 
   [[nodiscard]] gpiod_line* line() const noexcept { return line_; }
+  [[nodiscard]] gpiod_chip* chip() const noexcept { return chip_.get(); }
   // "line 5 of gpiochip0 [pinctrl-bcm2711]", for messages.
   [[nodiscard]] const std::string& description() const noexcept { return description_; }
 
@@ -46,5 +47,9 @@ Expected<LineHandle> find_line(std::string_view signal, const std::string& chip,
 // Errors: kBusy (naming the holder), kPermissionDenied, kInvalidArgument (flags refused), kIo.
 Expected<void> request_line(const LineHandle& handle, std::string_view signal, int request_type, int flags,
                             int default_value);
+
+// The error for a line request that failed with `err` (errno), as request_line reports it;
+// `flags` goes into the message of a refused request.
+Error request_error(const LineHandle& handle, std::string_view signal, int flags, int err);
 
 }  // namespace hubrt::hal::gpiod_detail

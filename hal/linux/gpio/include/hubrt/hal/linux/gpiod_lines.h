@@ -30,7 +30,9 @@ inline constexpr const char* kGpioConsumer = "hubrt";
 Expected<std::unique_ptr<DigitalInput>> open_gpiod_input(const DigitalInputConfig& config);
 
 // Requests the line as an output driving `config.initial` (logical) from the moment of the
-// request. write() and write_safe() never block. Errors as open_gpiod_input.
+// request, with a bias toward the safe level when `config.bias_toward_safe` is set. The request
+// is entered in the crash-safe table (crash_safe_outputs.h) until the output is destroyed.
+// write() and write_safe() never block. Errors as open_gpiod_input.
 Expected<std::unique_ptr<DigitalOutput>> open_gpiod_output(const DigitalOutputConfig& config);
 
 struct GpioChipInfo {

@@ -1,0 +1,265 @@
+// The RSP ECU's outputs after hubd ends in ways no clean shutdown covers, on gpio-sim lines in the
+// kernel tier's guest: `kill -9` followed by the unit's ExecStopPost line (read from the shipped
+// unit template, packaging/deb/hubd.service.in), and a fatal signal caught by hubd's crash
+// handler. Skips outside the tier (tests/kernel/run).
+//
+// gpio-sim gives a released line the level of its pull (gpio_sim_free() in
+// drivers/gpio/gpio-sim.c), so a line's level after its holder is gone is what the holder left as
+// the line's bias: --safe-outputs and the crash handler pull each output toward its safe level.
+// The gripper valve (safe: grab, active) shows the hazard without help: released by a killed
+// hubd, it drops to the default pull-down, i.e. the gripper opens. The lock valve (safe: closed,
+// inactive) is given a pull-up after the kill, standing in for a driver that keeps a released
+// line's last level (the valve stays energised, the changer open).
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/types.h>
+
+#include "hubrt/dds/qos.h"
+#include "hubrt/dds/reader.h"
+#include "hubrt/dds/sample.h"
+#include "hubrt/dds/topic.h"
+#include "hubrt/dds/writer.h"
+#include "hubrt/kernel_test/environment.h"
+#include "hubrt/kernel_test/gpio_sim.h"
+
+#include "hub_process.h"
+#include "rsp_messages.h"
+
+namespace hubrt::kernel_test {
+namespace {
+
+using integration::HubProcess;
+using integration::HubProcessOptions;
+using rsp_ecu::RspCommand;
+using rsp_ecu::RspState;
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+using std::chrono::steady_clock;
+
+// Generous: the guest runs under software emulation on a busy 2-core host (tests/kernel/README.md).
+constexpr auto kPatience = seconds(30);
+
+// boards/rpi4-rsp-ecu.yaml: outputs and the pressure switch.
+constexpr unsigned kLockValveLine = 4;      // active high, safe false (closed)
+constexpr unsigned kGripperValveLine = 18;  // active high, initial true, safe true (grab)
+constexpr unsigned kPressureLine = 19;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void replace(std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << "'" << from << "' not found in:\n" << text;
+  text.replace(at, from.size(), to);
+}
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string word; in >> word;) out.push_back(word);
+  return out;
+}
+
+class HubdSafeOutputsKernelTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    HUBRT_SKIP_OUTSIDE_KERNEL_TIER();
+    // A chip of its own per test: the pulls a test leaves behind are what the next one checks.
+    static std::atomic<unsigned> counter{0};
+    const std::string name = fmt::format("hubrt-so{}-{}", ::getpid(), counter++);
+    auto chip = ScopedGpioSimChip::create(name, 32);
+    ASSERT_TRUE(chip) << chip.error().message;
+    chip_.emplace(std::move(*chip));
+    write_board(name);
+    auto domain = test_support::TestDomain::acquire();
+    ASSERT_TRUE(domain) << domain.error().message;
+    domain_.emplace(std::move(*domain));
+    auto participant = dds::Participant::create(domain_->config(), "kernel-test-planner");
+    ASSERT_TRUE(participant) << participant.error().message;
+    participant_.emplace(std::move(*participant));
+    auto command_topic = dds::Topic<RspCommand>::create(*participant_, "/tool_changer/command");
+    ASSERT_TRUE(command_topic) << command_topic.error().message;
+    command_topic_.emplace(std::move(*command_topic));
+    auto writer = dds::Writer<RspCommand>::create(*participant_, *command_topic_);
+    ASSERT_TRUE(writer) << writer.error().message;
+    command_writer_.emplace(std::move(*writer));
+    auto state_topic = dds::Topic<RspState>::create(*participant_, "/rsp_ecu/rsp/state");
+    ASSERT_TRUE(state_topic) << state_topic.error().message;
+    state_topic_.emplace(std::move(*state_topic));
+    auto reader = dds::Reader<RspState>::create(*participant_, *state_topic_);
+    ASSERT_TRUE(reader) << reader.error().message;
+    state_reader_.emplace(std::move(*reader));
+  }
+
+  void TearDown() override {
+    hub_.reset();  // kills a hubd still running, so the chip's lines are free to remove it
+    if (!board_path_.empty()) std::filesystem::remove(board_path_);
+  }
+
+  // The shipped RSP ECU board file with its chip replaced by the test's chip (by label).
+  void write_board(const std::string& chip_label) {
+    std::string text = read_file(std::string(HUBRT_SOURCE_DIR) + "/boards/rpi4-rsp-ecu.yaml");
+    board_path_ = (std::filesystem::temp_directory_path() / (chip_label + ".yaml")).string();
+    replace(text, "board: rpi4-rsp-ecu", "board: " + chip_label);
+    replace(text, "arch: arm64", "arch: x86_64");
+    replace(text, "{label: pinctrl-bcm2711}", "{label: " + chip_label + "}");
+    std::ofstream(board_path_) << text;
+  }
+
+  const GpioSimChip& chip() const { return chip_->chip(); }
+
+  int line(unsigned offset) {
+    auto value = read_value(chip(), offset);
+    EXPECT_TRUE(value) << value.error().message;
+    return value ? *value : -1;
+  }
+
+  void send(const char* action, const char* gripper) {
+    RspCommand command{};
+    command.target_type = const_cast<char*>("tool_changer");  // NOLINT: wire type wants char*
+    command.target_name = const_cast<char*>("rsp");           // NOLINT
+    command.action = const_cast<char*>(action);               // NOLINT
+    command.gripper = const_cast<char*>(gripper);             // NOLINT
+    ASSERT_TRUE(command_writer_->write(command).is_ok());
+  }
+
+  // Starts hubd as the unit does (backend from the board: linux), brings up the air, clears the
+  // pressure failure latched while it was off and commands the gripper open: the gripper line
+  // then sits at its unsafe level.
+  void start_hub_with_gripper_released() {
+    HubProcessOptions options;
+    options.board = board_path_;
+    options.hub = "rsp_ecu";
+    auto hub = HubProcess::start(*domain_, options);
+    ASSERT_TRUE(hub) << hub.error().message;
+    hub_.emplace(std::move(*hub));
+    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
+    // A command written before hubd's reader matched would be lost.
+    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
+    // hubd requested the switch with a pull-down bias; air comes after that.
+    ASSERT_TRUE(set_pull(chip(), kPressureLine, Pull::kUp));
+    const auto deadline = steady_clock::now() + kPatience;
+    bool released = false;
+    for (int round = 0; steady_clock::now() < deadline && !released; ++round) {
+      // Resets clear the pressure failure latched before the air came (a reset leaves the
+      // gripper as it is); the commands in between open the gripper.
+      send(round % 4 == 0 ? "reset" : "lock", "release");
+      std::this_thread::sleep_for(milliseconds(200));
+      auto gripper = read_value(chip(), kGripperValveLine);
+      released = gripper && *gripper == 0;
+    }
+    ASSERT_TRUE(released) << "the gripper line never went low\nhubd output:\n" << hub_->output();
+    EXPECT_EQ(line(kLockValveLine), 0);
+  }
+
+  // The ExecStopPost line of packaging/deb/hubd.service.in for this board and hub, with the
+  // build's hubd for /usr/bin/hubd.
+  std::vector<std::string> exec_stop_post() {
+    const std::string unit = read_file(std::string(HUBRT_SOURCE_DIR) + "/packaging/deb/hubd.service.in");
+    std::istringstream lines(unit);
+    std::vector<std::string> found;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("ExecStopPost=", 0) != 0) continue;
+      std::string command = line.substr(std::string("ExecStopPost=").size());
+      replace(command, "@HUBRT_PKG_BOARD@", board_path_);
+      replace(command, "@HUBRT_PKG_HUB@", "rsp_ecu");
+      found = words(command);
+    }
+    EXPECT_FALSE(found.empty()) << "no ExecStopPost= in the unit template";
+    if (!found.empty()) {
+      EXPECT_EQ(found.front(), "/usr/bin/hubd");
+      found.erase(found.begin());
+    }
+    return found;
+  }
+
+  std::optional<ScopedGpioSimChip> chip_;
+  std::string board_path_;
+  std::optional<test_support::TestDomain> domain_;
+  std::optional<dds::Participant> participant_;
+  std::optional<dds::Topic<RspCommand>> command_topic_;
+  std::optional<dds::Writer<RspCommand>> command_writer_;
+  std::optional<dds::Topic<RspState>> state_topic_;
+  std::optional<dds::Reader<RspState>> state_reader_;
+  std::optional<HubProcess> hub_;
+};
+
+TEST_F(HubdSafeOutputsKernelTest, AfterKillNineTheUnitsExecStopPostLeavesBothValvesSafe) {
+  ASSERT_NO_FATAL_FAILURE(start_hub_with_gripper_released());
+  ASSERT_TRUE(hub_->process().signal(SIGKILL));
+  auto ended = hub_->process().wait(kPatience);
+  ASSERT_TRUE(ended) << ended.error().message;
+  ASSERT_TRUE(ended->killed_by(SIGKILL)) << ended->describe();
+  // The hazard: with hubd gone the gripper line fell to its pull (the gripper opens), and a lock
+  // valve line that kept its level would keep the changer open.
+  EXPECT_EQ(line(kGripperValveLine), 0);
+  ASSERT_TRUE(set_pull(chip(), kLockValveLine, Pull::kUp));
+  ASSERT_EQ(line(kLockValveLine), 1);
+
+  const std::vector<std::string> args = exec_stop_post();
+  ASSERT_FALSE(args.empty());
+  test_support::Environment env{{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR},
+                                // Any DDS use would fail on this: --safe-outputs uses none.
+                                {"CYCLONEDDS_URI", "<CycloneDDS><Broken"}};
+  auto safe = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  ASSERT_TRUE(safe) << safe.error().message;
+  auto done = safe->wait(kPatience);
+  ASSERT_TRUE(done) << done.error().message;
+  const std::string output = safe->stdout_text() + safe->stderr_text();
+  EXPECT_TRUE(done->exited_with(0)) << done->describe() << "\n" << output;
+  EXPECT_NE(output.find("all 2 outputs driven to their safe levels"), std::string::npos) << output;
+
+  // --safe-outputs has exited and released the lines: they stay at their safe levels.
+  EXPECT_EQ(line(kGripperValveLine), 1) << "gripper valve not back at grab\n" << output;
+  EXPECT_EQ(line(kLockValveLine), 0) << "lock valve not closed\n" << output;
+}
+
+TEST_F(HubdSafeOutputsKernelTest, WithoutHubdRunningItExitsOneNamingEveryOutputItCannotReach) {
+  chip_.reset();  // the chip is gone: a board whose GPIO expander is unplugged
+  const std::vector<std::string> args = exec_stop_post();
+  ASSERT_FALSE(args.empty());
+  auto safe =
+      test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, {{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR}});
+  ASSERT_TRUE(safe) << safe.error().message;
+  auto done = safe->wait(kPatience);
+  ASSERT_TRUE(done) << done.error().message;
+  const std::string output = safe->stdout_text() + safe->stderr_text();
+  EXPECT_TRUE(done->exited_with(1)) << done->describe() << "\n" << output;
+  EXPECT_NE(output.find("2 of 2 outputs NOT driven safe: rsp.lock_valve, rsp.gripper_valve"),
+            std::string::npos)
+      << output;
+}
+
+TEST_F(HubdSafeOutputsKernelTest, AFatalSignalDrivesTheOutputsSafeBeforeHubdDies) {
+  ASSERT_NO_FATAL_FAILURE(start_hub_with_gripper_released());
+  ASSERT_TRUE(hub_->process().signal(SIGSEGV));
+  auto ended = hub_->process().wait(kPatience);
+  ASSERT_TRUE(ended) << ended.error().message;
+  // Without a sanitizer the default action kills it; under ASan its own handler (which the crash
+  // handler hands over to) reports and exits non-zero.
+  EXPECT_TRUE(ended->killed_by(SIGSEGV) || (ended->exit_code && *ended->exit_code != 0)) << ended->describe();
+  const std::string output = hub_->output();
+  EXPECT_NE(output.find("hubd: fatal signal: GPIO outputs driven to their safe levels"), std::string::npos)
+      << output;
+  // Released by the dead process, the lines keep the bias the handler gave them.
+  EXPECT_EQ(line(kGripperValveLine), 1) << output;
+  EXPECT_EQ(line(kLockValveLine), 0) << output;
+}
+
+}  // namespace
+}  // namespace hubrt::kernel_test
