@@ -71,6 +71,20 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   if (!required) return std::move(required).error();
   if (auto ok = hal::check_requirements(out->board, *required); !ok) return std::move(ok).error();
 
+  // The start stamp decides which of two twins is the later one (twin_rules.h).
+  const std::int64_t started_ns = clock.now().wall.ns_since_epoch;
+  auto participant =
+      dds::Participant::create(request.domain, out->config.name, start_stamp_user_data(started_ns));
+  if (!participant) return std::move(participant).error();
+  out->participant.emplace(std::move(*participant));
+  if (request.twin_check) {
+    auto watch = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
+    if (!watch) return std::move(watch).error();
+    // Before the backend: a twin refused here has opened no device and touched no output.
+    if (auto alone = (*watch)->check_at_start(*request.twin_check); !alone) return std::move(alone).error();
+    out->twin_watch = std::move(*watch);
+  }
+
   if (request.backend == BackendKind::kFake) {
     auto fake = hal::fake::FakeBackend::create(out->board, clock);
     if (!fake) {
@@ -82,10 +96,6 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   } else {
     out->backend = std::make_unique<hal::LinuxBackend>();
   }
-
-  auto participant = dds::Participant::create(request.domain, out->config.name);
-  if (!participant) return std::move(participant).error();
-  out->participant.emplace(std::move(*participant));
 
   runtime::HubOptions options;
   options.type = out->config.type;
@@ -107,6 +117,13 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
                                                 out->config.command_timeout);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
+  }
+  if (out->twin_watch) {
+    auto twins =
+        std::make_unique<TwinStage>(*out->twin_watch, out->hub->alerts(),
+                                    HubStamp{started_ns, out->participant->guid()}, request.request_stop);
+    out->twins = twins.get();
+    out->hub->add_stage(std::move(twins));
   }
   if (out->fake != nullptr) {
     auto bridge =

@@ -32,6 +32,8 @@ struct Options {
   std::optional<double> rate_hz;
   std::string log_level = "info";
   bool check_only = false;
+  std::uint32_t twin_check_ms = static_cast<std::uint32_t>(
+      std::chrono::duration_cast<std::chrono::milliseconds>(assembly::kDefaultTwinCheckWindow).count());
 };
 
 // Exit codes: 0 clean stop, 1 runtime failure, 2 bad command line or configuration.
@@ -116,6 +118,9 @@ int run(const Options& options) {
   request.rate_hz = options.rate_hz;
   request.log = *logger;
   request.waker = runner->waker();
+  // A --check never joins the watch window: it runs nothing that a twin could collide with.
+  if (!options.check_only) request.twin_check = std::chrono::milliseconds(options.twin_check_ms);
+  request.request_stop = [&runner] { runner->request_stop(); };
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
@@ -150,6 +155,10 @@ int run(const Options& options) {
     spdlog::error("cycle failed: {}; outputs driven to their safe state", stopped.error().message);
     return kExitRuntime;
   }
+  if ((*assembled)->twins != nullptr && (*assembled)->twins->yielded()) {
+    spdlog::error("{}; outputs driven to their safe state", (*assembled)->twins->yield_message());
+    return kExitRuntime;
+  }
   const runtime::CycleStats& stats = hub.stats();
   spdlog::info("stopping on {}: outputs driven to their safe state after {} cycles ({} overruns)",
                *stopped == runtime::StopReason::kSignal ? signal_name(runner->last_signal()) : "request",
@@ -178,6 +187,10 @@ int main(int argc, char** argv) {
   app.add_option("--rate", options.rate_hz, "Cycle and heartbeat rate in Hz, overriding the hub file's")
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
+  app.add_option("--twin-check-ms", options.twin_check_ms,
+                 "Discovery window at start-up in which another hub publishing this hub's States makes "
+                 "this one refuse to run (0: no wait; a later twin is still caught while running)")
+      ->check(CLI::Range(0, 60000));
   app.add_flag("--check", options.check_only, "Load and validate the board and hub files, then exit");
   CLI11_PARSE(app, argc, argv);
   return hubrt::hubd::run(options);

@@ -9,6 +9,7 @@
 #include <spdlog/logger.h>
 
 #include "hubrt/assembly/subscriptions.h"
+#include "hubrt/assembly/twin_watch.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
 #include "hubrt/config/hub_config.h"
@@ -36,6 +37,13 @@ struct AssemblyRequest {
   std::optional<double> rate_hz;        // overrides the configured rate
   std::shared_ptr<spdlog::logger> log;  // defaults to spdlog's default logger
   runtime::Waker waker;
+  // Guard against a twin (another hub publishing this hub's States, see twin_watch.h): nullopt
+  // for none (tests, benchmarks); else the start-up discovery window (zero: no wait, only the
+  // running watch) — a twin seen then fails assembly with kBusy before any device is opened.
+  std::optional<Duration> twin_check;
+  // Called from the cycle when this hub must stop because an earlier twin runs (thread-safe,
+  // allocation-free, e.g. CycleRunner::request_stop).
+  std::function<void()> request_stop;
 };
 
 // Destroyed in reverse order of the members: the hub (nodes, their devices and DDS endpoints)
@@ -46,13 +54,15 @@ struct AssembledHub {
   std::unique_ptr<hal::Backend> backend;
   hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
   std::optional<dds::Participant> participant;
+  std::unique_ptr<TwinWatch> twin_watch;         // when request.twin_check: uses the participant
   std::unique_ptr<Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
   std::unique_ptr<runtime::Hub> hub;
+  const TwinStage* twins = nullptr;  // owned by the hub; says whether the hub yielded to a twin
 };
 
-// Loads and checks both files, checks the board provides what the hub needs, opens the backend,
-// joins the domain and builds the nodes. Errors name the file and line, the device or the topic.
-// `clock` drives the fake backend's simulators and must outlive the result.
+// Loads and checks both files, checks the board provides what the hub needs, joins the domain,
+// checks for a twin (request.twin_check), opens the backend and builds the nodes. Errors name the file and
+// line, the device or the topic. `clock` drives the fake backend's simulators and must outlive the result.
 Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock);
 
 }  // namespace hubrt::assembly
