@@ -81,7 +81,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     auto watch = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
     if (!watch) return std::move(watch).error();
     // Before the backend: a twin refused here has opened no device and touched no output.
-    if (auto alone = (*watch)->check_at_start(*request.twin_check); !alone) return std::move(alone).error();
+    if (*request.twin_check > Duration::zero()) {
+      if (auto alone = (*watch)->check_at_start(*request.twin_check); !alone) return std::move(alone).error();
+    }
     out->twin_watch = std::move(*watch);
   }
 

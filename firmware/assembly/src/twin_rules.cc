@@ -105,11 +105,18 @@ void TwinMonitor::update(const TwinSnapshot& current, Time now, runtime::HubAler
     }
   }
   if (current.more > 0) alerts.add("twin: and {} more participants publish this hub's States", current.more);
+  const bool came_and_went = current.sightings != sightings_;
+  sightings_ = current.sightings;
   if (current.count > 0) {
     last_seen_ = current.peers[0];
     last_seen_at_ = now;
     seen_ = true;
     return;
+  }
+  if (came_and_went) {  // it was there between the last cycle and this one
+    last_seen_ = current.last;
+    last_seen_at_ = now;
+    seen_ = true;
   }
   if (seen_ && now - last_seen_at_ <= hold_) {
     describe_origin(last_seen_, origin);

@@ -39,9 +39,11 @@ TwinWatch::~TwinWatch() {
 }
 
 void TwinWatch::changed(const std::vector<dds::WatchedWriter>& writers) {
-  const TwinSnapshot snapshot = summarize_twins(writers);
+  TwinSnapshot snapshot = summarize_twins(writers);
   {
     const std::lock_guard lock(mutex_);
+    snapshot.sightings = snapshot_.sightings + (snapshot.count > 0 ? 1 : 0);
+    snapshot.last = snapshot.count > 0 ? snapshot.peers[0] : snapshot_.last;
     snapshot_ = snapshot;
   }
   generation_.fetch_add(1, std::memory_order_release);

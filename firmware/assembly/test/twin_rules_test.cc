@@ -153,6 +153,24 @@ TEST_F(TwinMonitorTest, TheEarlierHubReportsTheTwinKeepsRunningAndHoldsTheReport
   EXPECT_FALSE(monitor.must_yield());
 }
 
+TEST_F(TwinMonitorTest, ATwinThatCameAndWentBetweenTwoCyclesIsStillReported) {
+  TwinMonitor monitor(HubStamp{1'000, guid(1)}, seconds(10));
+  monitor.update(TwinSnapshot{}, t0_, alerts_);
+  // What the watch hands over after a twin appeared and vanished within one period.
+  TwinSnapshot gone;
+  gone.sightings = 1;
+  gone.last = twin_started_at(2'000).peers[0];
+  monitor.update(gone, t0_ + milliseconds(100), alerts_);
+  ASSERT_EQ(alerts_.size(), 1U);
+  EXPECT_EQ(alerts_.at(0),
+            "twin: another hub published /dock_ecu/dock/state from host pi-dock pid 4242 until 0.0 s ago");
+  monitor.update(gone, t0_ + seconds(5), alerts_);  // the same sighting: held, not renewed
+  ASSERT_EQ(alerts_.size(), 1U);
+  EXPECT_NE(alerts_.at(0).find("until 4.9 s ago"), std::string_view::npos) << alerts_.at(0);
+  monitor.update(gone, t0_ + seconds(11), alerts_);
+  EXPECT_TRUE(alerts_.empty());
+}
+
 TEST_F(TwinMonitorTest, AWriterThatIsNoHubIsReportedButNeverMakesTheHubYield) {
   TwinMonitor monitor(HubStamp{2'000, guid(1)}, seconds(10));
   monitor.update(summarize_twins({writer("rt/dock_ecu/dock/state", 7, "laptop", "99", "")}), t0_, alerts_);

@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
   app.add_option("--twin-check-ms", options.twin_check_ms,
                  "Discovery window at start-up in which another hub publishing this hub's States makes "
-                 "this one refuse to run (0: no wait; a later twin is still caught while running)")
+                 "this one refuse to run (0: no start-up check; a twin is still caught while running)")
       ->check(CLI::Range(0, 60000));
   app.add_flag("--check", options.check_only, "Load and validate the board and hub files, then exit");
   CLI11_PARSE(app, argc, argv);

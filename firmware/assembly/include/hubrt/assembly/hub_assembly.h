@@ -38,8 +38,9 @@ struct AssemblyRequest {
   std::shared_ptr<spdlog::logger> log;  // defaults to spdlog's default logger
   runtime::Waker waker;
   // Guard against a twin (another hub publishing this hub's States, see twin_watch.h): nullopt
-  // for none (tests, benchmarks); else the start-up discovery window (zero: no wait, only the
-  // running watch) — a twin seen then fails assembly with kBusy before any device is opened.
+  // for none (tests, benchmarks); else the start-up discovery window (zero: no start-up check,
+  // only the running watch) — a twin seen in it fails assembly with kBusy before any device is
+  // opened.
   std::optional<Duration> twin_check;
   // Called from the cycle when this hub must stop because an earlier twin runs (thread-safe,
   // allocation-free, e.g. CycleRunner::request_stop).

@@ -60,6 +60,10 @@ struct TwinSnapshot {
   std::array<TwinPeer, kMaxPeers> peers{};
   std::size_t count = 0;  // peers in use
   std::size_t more = 0;   // further twins that did not fit
+  // Every list with a twin counts one sighting, and `last` keeps its first twin: a twin that came
+  // and went between two cycles is still reported (TwinMonitor compares the count).
+  std::uint64_t sightings = 0;
+  TwinPeer last{};
 };
 
 // Groups the watched writers by participant (the list from dds::WriterWatch). Allocates.
@@ -90,6 +94,7 @@ class TwinMonitor {
   TwinPeer last_seen_{};
   Time last_seen_at_{};
   bool seen_ = false;
+  std::uint64_t sightings_ = 0;
   bool must_yield_ = false;
   TwinPeer yielded_to_{};
 };
