@@ -61,6 +61,8 @@ void TwinWatch::changed(const std::vector<dds::WatchedWriter>& writers) {
 }
 
 Expected<void> TwinWatch::check_at_start(Duration window) const {
+  log_->debug("twin: watching discovery for {} ms for another participant publishing the States of hub '{}'",
+              std::chrono::duration_cast<std::chrono::milliseconds>(window).count(), hub_name_);
   // Polled rather than waited on: the window is short and this runs once, before the cycle.
   const auto deadline = std::chrono::steady_clock::now() + window;
   std::uint64_t seen = 0;
