@@ -267,19 +267,20 @@ TEST_P(HubdTwinTest, ALaterTwinIsReportedByBothAndTheLaterOneGoesSafeAndExits) {
     return s.writer == first_writer_ &&
            (s.errors.find(present) != std::string::npos || s.errors.find(held) != std::string::npos);
   })) << first_->output();
-  // ... and in /diagnostics, as the first error of its node.
-  bool in_diagnostics = false;
+  // ... and in /diagnostics, as the first error of its node and on the hub's own line.
+  bool node_line = false;
+  bool hub_line = false;
   const auto deadline = std::chrono::steady_clock::now() + kPatience;
-  while (!in_diagnostics && std::chrono::steady_clock::now() < deadline) {
+  while (!(node_line && hub_line) && std::chrono::steady_clock::now() < deadline) {
     for (const std::string& line : diagnostics_messages(*diagnostics_)) {
-      if (line.starts_with("dock_ecu: dock: ") &&
-          (line.find(present) != std::string::npos || line.find(held) != std::string::npos)) {
-        in_diagnostics = true;
-      }
+      const bool reports = line.find(present) != std::string::npos || line.find(held) != std::string::npos;
+      node_line |= reports && line.starts_with("dock_ecu: dock: ");
+      hub_line |= reports && line.starts_with("dock_ecu: cycle: ");
     }
     std::this_thread::sleep_for(milliseconds(50));
   }
-  EXPECT_TRUE(in_diagnostics) << first_->output();
+  EXPECT_TRUE(node_line) << first_->output();
+  EXPECT_TRUE(hub_line) << first_->output();
 
   // The first hub keeps running: its heartbeat goes on, from the same writer, in sequence.
   const std::size_t before = states_->seen().size();

@@ -1,6 +1,8 @@
 // Conditions of the whole hub that every node reports in its State's error_list (and so in
-// /diagnostics), e.g. another process publishing this hub's States. Set by a cycle stage before
-// the nodes step; read by the nodes when they rebuild their State. Fixed storage: never allocates.
+// /diagnostics, where the hub's own status line shows the first one too), e.g. another process
+// publishing this hub's States. Set by a cycle stage before the nodes step (today one stage owns
+// them: the twin guard, which clears and refills them every cycle); read by the nodes when they
+// rebuild their State. Fixed storage: never allocates.
 #pragma once
 
 #include <array>
