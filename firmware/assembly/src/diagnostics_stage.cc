@@ -105,6 +105,11 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);
+  // A hub-wide alert (e.g. a twin) concerns the hub as a whole: say it on the hub's line too.
+  if (!hub_.alerts().empty()) {
+    s.message.assign(hub_.alerts().at(0));
+    wire_statuses_[0].level = level_of(runtime::Health::kError);
+  }
 }
 
 void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept {

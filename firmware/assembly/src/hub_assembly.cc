@@ -86,6 +86,22 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   out->config = std::move(checked->config);
   const HubType* type = find_hub_type(out->config.type);
 
+  // The start stamp decides which of two twins is the later one (twin_rules.h).
+  const std::int64_t started_ns = clock.now().wall.ns_since_epoch;
+  auto participant =
+      dds::Participant::create(request.domain, out->config.name, start_stamp_user_data(started_ns));
+  if (!participant) return std::move(participant).error();
+  out->participant.emplace(std::move(*participant));
+  if (request.twin_check) {
+    auto watch = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
+    if (!watch) return std::move(watch).error();
+    // Before the backend: a twin refused here has opened no device and touched no output.
+    if (*request.twin_check > Duration::zero()) {
+      if (auto alone = (*watch)->check_at_start(*request.twin_check); !alone) return std::move(alone).error();
+    }
+    out->twin_watch = std::move(*watch);
+  }
+
   if (request.backend == BackendKind::kFake) {
     auto fake = hal::fake::FakeBackend::create(out->board, clock);
     if (!fake) {
@@ -97,10 +113,6 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   } else {
     out->backend = std::make_unique<hal::LinuxBackend>();
   }
-
-  auto participant = dds::Participant::create(request.domain, out->config.name);
-  if (!participant) return std::move(participant).error();
-  out->participant.emplace(std::move(*participant));
 
   runtime::HubOptions options;
   options.type = out->config.type;
@@ -123,6 +135,13 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
         out->config.immediate_state_interval, request.log_lines_dropped);
     if (!diagnostics) return std::move(diagnostics).error();
     out->hub->add_stage(std::move(*diagnostics));
+  }
+  if (out->twin_watch) {
+    auto twins =
+        std::make_unique<TwinStage>(*out->twin_watch, out->hub->alerts(),
+                                    HubStamp{started_ns, out->participant->guid()}, request.request_stop);
+    out->twins = twins.get();
+    out->hub->add_stage(std::move(twins));
   }
   if (out->fake != nullptr) {
     auto bridge =

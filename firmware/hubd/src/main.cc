@@ -41,6 +41,8 @@ struct Options {
   std::string log_level = "info";
   bool check_only = false;
   bool safe_outputs = false;
+  std::uint32_t twin_check_ms = static_cast<std::uint32_t>(
+      std::chrono::duration_cast<std::chrono::milliseconds>(assembly::kDefaultTwinCheckWindow).count());
 };
 
 // The exit statuses are the table of hubrt/base/exit_codes.h, shared with hubctl.
@@ -137,6 +139,9 @@ int run(const Options& options) {
   auto runner = runtime::CycleRunner::create();
   if (!runner) return fail(runner.error().message, kExitRuntime);
   request.waker = runner->waker();
+  // After --check returned: a check joins no network, so it has no twin to collide with.
+  request.twin_check = std::chrono::milliseconds(options.twin_check_ms);
+  request.request_stop = [&runner] { runner->request_stop(); };
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
@@ -161,6 +166,10 @@ int run(const Options& options) {
   hub.report_safe_state(clock.now());
   if (!stopped) {
     spdlog::error("cycle failed: {}; outputs driven to their safe state", stopped.error().message);
+    return kExitRuntime;
+  }
+  if ((*assembled)->twins != nullptr && (*assembled)->twins->yielded()) {
+    spdlog::error("{}; outputs driven to their safe state", (*assembled)->twins->yield_message());
     return kExitRuntime;
   }
   const runtime::CycleStats& stats = hub.stats();
@@ -200,6 +209,10 @@ int main(int argc, char** argv) {
   app.add_option("--rate", options.rate_hz, "Cycle and heartbeat rate in Hz, overriding the hub file's")
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
+  app.add_option("--twin-check-ms", options.twin_check_ms,
+                 "Discovery window at start-up in which another hub publishing this hub's States makes "
+                 "this one refuse to run (0: no start-up check; a twin is still caught while running)")
+      ->check(CLI::Range(0, 60000));
   auto* check =
       app.add_flag("--check", options.check_only,
                    "Load and validate the board and hub files and the hub's needs against the board, "

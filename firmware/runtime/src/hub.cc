@@ -22,6 +22,7 @@ Hub::Hub(HubOptions options) : options_(std::move(options)) {
 }
 
 void Hub::add_node(std::unique_ptr<NodeBase> node) {
+  node->watch_alerts(&alerts_);
   nodes_.push_back(std::move(node));
 }
 void Hub::add_stage(std::unique_ptr<CycleStage> stage) {

@@ -68,6 +68,24 @@ TEST_F(NodeTest, BeforeAnyCommandTheNodeIsSafeAndNotFresh) {
   EXPECT_FALSE(world_.open);
 }
 
+TEST_F(NodeTest, HubAlertsComeFirstInTheErrorListWhileTheyLast) {
+  HubAlerts alerts;
+  node_->watch_alerts(&alerts);
+  step();
+  EXPECT_EQ(state().error_list._length, 0u);
+
+  alerts.add("twin: another hub publishes {} from host {} pid {}", "/hub/v1/state", "pi", 42);
+  step();
+  ASSERT_EQ(error_list(state()),
+            std::vector<std::string>{"twin: another hub publishes /hub/v1/state from host pi pid 42"});
+  EXPECT_EQ(node_->first_error(), "twin: another hub publishes /hub/v1/state from host pi pid 42");
+  EXPECT_EQ(node_->health(), Health::kError);
+
+  alerts.clear();
+  step();
+  EXPECT_EQ(state().error_list._length, 0u);
+}
+
 TEST_F(NodeTest, AValidCommandTakesEffectAndIsEchoedVerbatim) {
   OwnedValveCommand command;
   command.tags = {"bolt-7", "ånd ütf8"};

@@ -11,6 +11,7 @@
 #include <spdlog/logger.h>
 
 #include "hubrt/assembly/subscriptions.h"
+#include "hubrt/assembly/twin_watch.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
 #include "hubrt/config/hub_config.h"
@@ -41,6 +42,14 @@ struct AssemblyRequest {
   // Log lines the process could not write (stderr closed), published in /diagnostics as
   // log_lines_dropped when set. Must outlive the assembled hub.
   const std::atomic<std::uint64_t>* log_lines_dropped = nullptr;
+  // Guard against a twin (another hub publishing this hub's States, see twin_watch.h): nullopt
+  // for none (tests, benchmarks); else the start-up discovery window (zero: no start-up check,
+  // only the running watch) — a twin seen in it fails assembly with kBusy before any device is
+  // opened.
+  std::optional<Duration> twin_check;
+  // Called from the cycle when this hub must stop because an earlier twin runs (thread-safe,
+  // allocation-free, e.g. CycleRunner::request_stop).
+  std::function<void()> request_stop;
 };
 
 // What `hubd --check` validates: both files, loaded, with the overrides applied.
@@ -63,12 +72,15 @@ struct AssembledHub {
   std::unique_ptr<hal::Backend> backend;
   hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
   std::optional<dds::Participant> participant;
+  std::unique_ptr<TwinWatch> twin_watch;         // when request.twin_check: uses the participant
   std::unique_ptr<Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
   std::unique_ptr<runtime::Hub> hub;
+  const TwinStage* twins = nullptr;  // owned by the hub; says whether the hub yielded to a twin
 };
 
-// check_hub(), then opens the backend, joins the domain and builds the nodes. Errors name the file and line,
-// the device or the topic. `clock` drives the fake backend's simulators and must outlive the result.
+// check_hub(), then joins the domain, checks for a twin (request.twin_check), opens the backend and
+// builds the nodes. Errors name the file and line, the device or the topic. `clock` drives the fake
+// backend's simulators and must outlive the result.
 Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& request, const Clock& clock);
 
 }  // namespace hubrt::assembly

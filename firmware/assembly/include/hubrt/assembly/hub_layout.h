@@ -156,6 +156,8 @@ class HubLayoutStage final : public runtime::CycleStage {
         std::move(options), HubLevelLogic<HubTypes>(routes_), source_, sink_, message_ops<HubCommand>());
     node_->logic().watch(node_->tracker());
   }
+  // The hub State's error_list carries the hub-wide alerts too (call after start()).
+  void watch_alerts(const runtime::HubAlerts& alerts) noexcept { node_->watch_alerts(&alerts); }
   std::vector<std::unique_ptr<Route>>& routes() noexcept { return routes_; }
   [[nodiscard]] const runtime::Node<HubLevelLogic<HubTypes>>& hub_node() const noexcept { return *node_; }
 
@@ -275,6 +277,7 @@ class NodeWiring {
     options.immediate_state_interval = context_.config.immediate_state_interval;
     options.log = context_.log;
     stage_->start(std::move(options));
+    stage_->watch_alerts(hub_.alerts());
     hub_.add_stage(std::move(stage_));
     return {};
   }

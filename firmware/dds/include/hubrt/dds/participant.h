@@ -24,11 +24,14 @@ class Participant {
  public:
   // Joins config.domain_id. With a non-empty config.cyclone_xml the domain is created with that
   // configuration unless it already exists in this process (see DomainConfig: first wins).
-  // `name` (optional) is published as the participant's entity name (seen by discovery).
+  // `name` (optional) is published as the participant's entity name (seen by discovery);
+  // `user_data` (optional) as its USER_DATA QoS, which every other participant reads from the
+  // DCPSParticipant builtin topic (hubd puts its start stamp there, see assembly/twin_watch.h).
   // Errors: the Cyclone refusal of the XML ("create domain N with the given Cyclone XML
   // configuration: ...") or of the participant ("create participant in domain N: ..."),
   // e.g. kInvalidArgument for a domain id above kMaxDomainId.
-  static Expected<Participant> create(const DomainConfig& config, std::string_view name = {});
+  static Expected<Participant> create(const DomainConfig& config, std::string_view name = {},
+                                      std::string_view user_data = {});
 
   ~Participant() = default;
   Participant(Participant&&) noexcept = default;

@@ -13,6 +13,7 @@
 #include <spdlog/logger.h>
 
 #include "hubrt/base/time.h"
+#include "hubrt/runtime/hub_alerts.h"
 #include "hubrt/runtime/node.h"
 
 namespace hubrt::runtime {
@@ -59,6 +60,7 @@ class Hub {
   Hub& operator=(const Hub&) = delete;
 
   // Wiring; before the first cycle only. `owned` keeps alive what nodes reference (ports).
+  // Every node added reports alerts() first in its error_list.
   void add_node(std::unique_ptr<NodeBase> node);
   void add_stage(std::unique_ptr<CycleStage> stage);
   // A stage that must run before every other (reading inputs the others use).
@@ -83,6 +85,10 @@ class Hub {
   // Immediate States held back by every node's and stage's budget, since start.
   [[nodiscard]] std::uint64_t states_deferred() const noexcept;
 
+  // Hub-wide conditions every node reports (set by a stage before the nodes step).
+  [[nodiscard]] HubAlerts& alerts() noexcept { return alerts_; }
+  [[nodiscard]] const HubAlerts& alerts() const noexcept { return alerts_; }
+
  private:
   void step(const Instant& now, bool publish_all) noexcept;
 
@@ -90,6 +96,7 @@ class Hub {
   std::vector<std::unique_ptr<NodeBase>> nodes_;
   std::vector<std::unique_ptr<CycleStage>> stages_;
   std::vector<std::shared_ptr<void>> owned_;
+  HubAlerts alerts_;
   CycleStats stats_;
 };
 

@@ -20,6 +20,7 @@
 #include "hubrt/runtime/command_tracker.h"
 #include "hubrt/runtime/error_list.h"
 #include "hubrt/runtime/escaped_text.h"
+#include "hubrt/runtime/hub_alerts.h"
 #include "hubrt/runtime/immediate_state_budget.h"
 #include "hubrt/runtime/message_ops.h"
 #include "hubrt/runtime/ports.h"
@@ -93,6 +94,13 @@ class NodeBase {
   [[nodiscard]] virtual std::uint64_t rejected() const noexcept = 0;
   // Changes whose immediate State the budget held back (they went out with a later State).
   [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept = 0;
+
+  // The hub-wide alerts this node puts first in its error_list (nullptr: none). Set while wiring;
+  // `alerts` must outlive the node.
+  void watch_alerts(const HubAlerts* alerts) noexcept { alerts_ = alerts; }
+
+ protected:
+  const HubAlerts* alerts_ = nullptr;
 };
 
 template <NodeLogic Logic>
@@ -153,6 +161,9 @@ class Node final : public NodeBase {
   // Rebuilds the State (common fields and the logic's) from what advance() left.
   void rebuild_state(Time now) noexcept {
     errors_.clear();
+    if (alerts_ != nullptr) {
+      for (std::size_t i = 0; i < alerts_->size(); ++i) errors_.add("{}", alerts_->at(i));
+    }
     // A rejection stays visible for one command timeout, or until a valid command takes effect.
     if (has_rejection_ && now - rejected_at_ <= options_.command_timeout) {
       errors_.add("rejected command: {}", last_rejection_.view());

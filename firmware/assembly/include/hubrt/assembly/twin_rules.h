@@ -1,0 +1,102 @@
+// Two hubs with the same name must never both run: both would publish the same State topics
+// (interleaved, sequence numbers going backwards) and both would act on the same commands. These
+// are the pure rules hubd applies (assembly/twin_watch.h does the DDS side):
+//   - a "twin" is another participant writing one of this hub's State topics;
+//   - which of two hubs is the later one: the one that started later (wall clock, carried in the
+//     participant's USER_DATA as "hubrt.started_ns=<ns>;"), ties broken by the larger participant
+//     GUID — both hubs see the same two stamps, so both reach the same verdict;
+//   - what every node reports while a twin is there, and for a while after it left.
+// Deterministic: time is passed in. Allocation-free except where noted.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hubrt/base/time.h"
+#include "hubrt/dds/guid.h"
+#include "hubrt/dds/writer_watch.h"
+#include "hubrt/runtime/hub_alerts.h"
+#include "hubrt/runtime/text_buffer.h"
+
+namespace hubrt::assembly {
+
+// The participant USER_DATA a hub publishes: "hubrt.started_ns=<ns>;". Allocates.
+std::string start_stamp_user_data(std::int64_t started_ns);
+// The start stamp in a participant's USER_DATA; nullopt when it carries none (not a hub).
+std::optional<std::int64_t> parse_start_stamp(std::string_view user_data) noexcept;
+
+struct HubStamp {
+  std::int64_t started_ns = 0;
+  dds::Guid participant;
+};
+// True when `a` is the later of the two hubs: it started later, or at the same nanosecond with
+// the larger GUID. Exactly one of is_later(a, b) and is_later(b, a) holds for distinct GUIDs.
+bool is_later(const HubStamp& a, const HubStamp& b) noexcept;
+
+// True for the DDS topic names that carry this hub's States in either layout:
+// "rt<ns>/<hub>/state" (hub layout) and "rt<ns>/<hub>/<node>/state" (node-type layout). Both, so
+// that a twin running the other layout is caught too. Commands, /diagnostics and /sim topics
+// (hubctl, hubsim, the sim bridge) never match.
+bool is_own_state_topic(std::string_view dds_topic, std::string_view ros_namespace,
+                        std::string_view hub) noexcept;
+
+// One other participant writing this hub's States, in fixed storage (the cycle copies it).
+struct TwinPeer {
+  dds::Guid participant;
+  runtime::TextBuffer<96> topic;  // ROS name of the first of its writers, e.g. "/dock_ecu/dock/state"
+  std::uint32_t topics = 0;       // how many of this hub's State topics it writes
+  runtime::TextBuffer<64> host;   // empty when DDS did not say
+  runtime::TextBuffer<20> pid;    // empty when DDS did not say
+  std::optional<std::int64_t> started_ns;  // its hub start stamp; nullopt: not a hub (e.g. a tool)
+};
+
+struct TwinSnapshot {
+  static constexpr std::size_t kMaxPeers = 3;
+  std::array<TwinPeer, kMaxPeers> peers{};
+  std::size_t count = 0;  // peers in use
+  std::size_t more = 0;   // further twins that did not fit
+  // Every list with a twin counts one sighting, and `last` keeps its first twin: a twin that came
+  // and went between two cycles is still reported (TwinMonitor compares the count).
+  std::uint64_t sightings = 0;
+  TwinPeer last{};
+};
+
+// Groups the watched writers by participant (the list from dds::WriterWatch). Allocates.
+TwinSnapshot summarize_twins(const std::vector<dds::WatchedWriter>& writers);
+
+// "host pi-tool pid 4242", or "participant <guid>" when DDS gave neither.
+void describe_origin(const TwinPeer& peer, runtime::TextBuffer<128>& out) noexcept;
+
+// Turns the twins seen each cycle into the hub's alerts and the verdict.
+// Thread-safety: one thread (the cycle).
+class TwinMonitor {
+ public:
+  // A twin that left is still reported for `hold`, so that the planner and operator see it even
+  // when the later hub went away within a cycle or two.
+  TwinMonitor(HubStamp self, Duration hold) noexcept : self_(self), hold_(hold) {}
+
+  // Sets `alerts` (cleared first) from the twins present at `now`.
+  void update(const TwinSnapshot& current, Time now, runtime::HubAlerts& alerts) noexcept;
+  // True once a hub that started earlier than this one was seen: this one must go to its safe
+  // state and exit. A twin that is no hub (no start stamp) is reported but never wins.
+  [[nodiscard]] bool must_yield() const noexcept { return must_yield_; }
+  // The hub this one yields to (meaningful when must_yield()).
+  [[nodiscard]] const TwinPeer& yielded_to() const noexcept { return yielded_to_; }
+
+ private:
+  HubStamp self_;
+  Duration hold_;
+  TwinPeer last_seen_{};
+  Time last_seen_at_{};
+  bool seen_ = false;
+  std::uint64_t sightings_ = 0;
+  bool must_yield_ = false;
+  TwinPeer yielded_to_{};
+};
+
+}  // namespace hubrt::assembly

@@ -1,0 +1,100 @@
+// hubd's guard against a second hub with the same name on the domain (rules in twin_rules.h):
+//   - at start-up, before any device is opened, it watches discovery for a window and refuses to
+//     run when another participant already writes one of this hub's State topics;
+//   - while running, a stage puts "twin: ..." first in every node's error_list (and so in
+//     /diagnostics) while a twin is there, and the later of the two hubs asks the runner to stop,
+//     after which hubd drives the outputs safe and exits with status 1.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/assembly/twin_rules.h"
+#include "hubrt/base/status.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/dds/writer_watch.h"
+#include "hubrt/runtime/hub.h"
+
+namespace hubrt::assembly {
+
+// Default discovery window of the start-up check. Cyclone answers a new participant's SPDP
+// announcement at once and the endpoints (SEDP) follow: on loopback (ASan build, loaded 2-core
+// machine) the other hub's State writer showed up 2-6 ms after the watch started. 300 ms leaves
+// margin for a LAN and a loaded Pi; it adds as much to the time to the first State (conformance
+// allows 1 s). A hub that starts inside another's window is still caught by the running watch.
+inline constexpr Duration kDefaultTwinCheckWindow = std::chrono::milliseconds(300);
+// How long a twin that left stays in error_list (see TwinMonitor).
+inline constexpr Duration kTwinReportHold = std::chrono::seconds(10);
+
+// Discovery side: the current twins of one hub, kept up to date from Cyclone's threads.
+// Thread-safety: all members may be called from any thread.
+class TwinWatch {
+ public:
+  // Starts watching writers of the State topics of hub `hub_name` under `ros_namespace` on
+  // `participant` (which must outlive the watch). Errors: those of dds::WriterWatch::start.
+  static Expected<std::unique_ptr<TwinWatch>> start(const dds::Participant& participant,
+                                                    std::string ros_namespace, std::string hub_name,
+                                                    std::shared_ptr<spdlog::logger> log);
+  ~TwinWatch();
+  TwinWatch(const TwinWatch&) = delete;
+  TwinWatch& operator=(const TwinWatch&) = delete;
+
+  // Waits up to `window` (returns as soon as a twin shows up). Errors: kBusy naming each twin's
+  // topic, host, pid and process, when another participant writes this hub's States.
+  // Blocks the calling thread: call it before opening devices, never from the cycle.
+  Expected<void> check_at_start(Duration window) const;
+
+  // Copies the current twins into `out` when they changed since `seen` (then updates `seen`).
+  // Allocation-free: for the cycle.
+  void copy_if_changed(std::uint64_t& seen, TwinSnapshot& out) const noexcept;
+
+ private:
+  TwinWatch(std::string hub_name, std::shared_ptr<spdlog::logger> log)
+      : hub_name_(std::move(hub_name)), log_(std::move(log)) {}
+  void changed(const std::vector<dds::WatchedWriter>& writers);
+
+  std::string hub_name_;
+  std::shared_ptr<spdlog::logger> log_;
+  mutable std::mutex mutex_;
+  TwinSnapshot snapshot_;
+  std::atomic<std::uint64_t> generation_{0};
+  bool had_twins_ = false;                     // changed() only (WriterWatch never runs it twice at once)
+  std::unique_ptr<dds::WriterWatch> writers_;  // last: its callbacks use the members above
+};
+
+// The cycle side: sets the hub's alerts each cycle and, when this hub is the later one, calls
+// `request_stop` once, after the cycle that published the twin report.
+class TwinStage final : public runtime::CycleStage {
+ public:
+  // `watch` and `alerts` must outlive the stage.
+  TwinStage(const TwinWatch& watch, runtime::HubAlerts& alerts, HubStamp self,
+            std::function<void()> request_stop)
+      : watch_(watch),
+        alerts_(alerts),
+        monitor_(self, kTwinReportHold),
+        request_stop_(std::move(request_stop)) {}
+
+  void before_nodes(const Instant& now) noexcept override;
+  void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
+
+  // After the runner returned: true when this hub stopped because an earlier hub runs.
+  [[nodiscard]] bool yielded() const noexcept { return stop_requested_; }
+  // "another hub with the same name ... started earlier: ..." (allocates).
+  [[nodiscard]] std::string yield_message() const;
+
+ private:
+  const TwinWatch& watch_;
+  runtime::HubAlerts& alerts_;
+  TwinMonitor monitor_;
+  std::function<void()> request_stop_;
+  std::uint64_t seen_ = 0;
+  TwinSnapshot snapshot_{};
+  bool stop_requested_ = false;
+};
+
+}  // namespace hubrt::assembly

@@ -1,0 +1,128 @@
+#include "hubrt/assembly/twin_rules.h"
+
+#include <charconv>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "hubrt/dds/ros_names.h"
+
+namespace hubrt::assembly {
+namespace {
+
+constexpr std::string_view kStampKey = "hubrt.started_ns=";
+
+}  // namespace
+
+std::string start_stamp_user_data(std::int64_t started_ns) {
+  return fmt::format("{}{};", kStampKey, started_ns);
+}
+
+std::optional<std::int64_t> parse_start_stamp(std::string_view user_data) noexcept {
+  // USER_DATA is "key=value;" pairs (ROS 2 uses the same shape); find ours at a pair boundary.
+  std::size_t at = 0;
+  for (;;) {
+    at = user_data.find(kStampKey, at);
+    if (at == std::string_view::npos) return std::nullopt;
+    if (at == 0 || user_data[at - 1] == ';') break;
+    at += kStampKey.size();
+  }
+  const std::string_view rest = user_data.substr(at + kStampKey.size());
+  const std::size_t end = rest.find(';');
+  if (end == std::string_view::npos || end == 0) return std::nullopt;
+  std::int64_t value = 0;
+  const auto [ptr, ec] = std::from_chars(rest.data(), rest.data() + end, value);
+  if (ec != std::errc() || ptr != rest.data() + end) return std::nullopt;
+  return value;
+}
+
+bool is_later(const HubStamp& a, const HubStamp& b) noexcept {
+  if (a.started_ns != b.started_ns) return a.started_ns > b.started_ns;
+  return a.participant > b.participant;
+}
+
+bool is_own_state_topic(std::string_view dds_topic, std::string_view ros_namespace,
+                        std::string_view hub) noexcept {
+  const auto consume = [&dds_topic](std::string_view part) {
+    if (!dds_topic.starts_with(part)) return false;
+    dds_topic.remove_prefix(part.size());
+    return true;
+  };
+  if (!consume("rt") || !consume(ros_namespace) || !consume("/") || !consume(hub) || !consume("/"))
+    return false;
+  if (dds_topic == "state") return true;  // hub layout
+  const std::size_t slash = dds_topic.find('/');
+  return slash != 0 && slash != std::string_view::npos && dds_topic.substr(slash) == "/state";
+}
+
+TwinSnapshot summarize_twins(const std::vector<dds::WatchedWriter>& writers) {
+  TwinSnapshot snapshot;
+  std::map<dds::Guid, TwinPeer*> by_participant;
+  for (const dds::WatchedWriter& writer : writers) {
+    const auto found = by_participant.find(writer.participant_key);
+    if (found != by_participant.end()) {
+      if (found->second != nullptr) ++found->second->topics;
+      continue;
+    }
+    if (snapshot.count == TwinSnapshot::kMaxPeers) {
+      ++snapshot.more;
+      by_participant.emplace(writer.participant_key, nullptr);
+      continue;
+    }
+    TwinPeer& peer = snapshot.peers[snapshot.count++];
+    by_participant.emplace(writer.participant_key, &peer);
+    peer.participant = writer.participant_key;
+    peer.topic.assign(dds::dds_to_ros_topic(writer.topic_name).value_or(writer.topic_name));
+    peer.topics = 1;
+    peer.host.assign(writer.host);
+    peer.pid.assign(writer.pid);
+    peer.started_ns = parse_start_stamp(writer.user_data);
+  }
+  return snapshot;
+}
+
+void describe_origin(const TwinPeer& peer, runtime::TextBuffer<128>& out) noexcept {
+  if (peer.host.empty() && peer.pid.empty()) {
+    const auto& b = peer.participant.bytes;
+    out.format("participant {:02x}{:02x}{:02x}{:02x}:{:02x}{:02x}{:02x}{:02x}:{:02x}{:02x}{:02x}{:02x}", b[0],
+               b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8], b[9], b[10], b[11]);
+    return;
+  }
+  out.format("host {} pid {}", peer.host.empty() ? "?" : peer.host.view(),
+             peer.pid.empty() ? "?" : peer.pid.view());
+}
+
+void TwinMonitor::update(const TwinSnapshot& current, Time now, runtime::HubAlerts& alerts) noexcept {
+  alerts.clear();
+  runtime::TextBuffer<128> origin;
+  for (std::size_t i = 0; i < current.count; ++i) {
+    const TwinPeer& peer = current.peers[i];
+    describe_origin(peer, origin);
+    alerts.add("twin: another hub publishes {} from {}", peer.topic.view(), origin.view());
+    if (peer.started_ns && !must_yield_ && is_later(self_, HubStamp{*peer.started_ns, peer.participant})) {
+      must_yield_ = true;
+      yielded_to_ = peer;
+    }
+  }
+  if (current.more > 0) alerts.add("twin: and {} more participants publish this hub's States", current.more);
+  const bool came_and_went = current.sightings != sightings_;
+  sightings_ = current.sightings;
+  if (current.count > 0) {
+    last_seen_ = current.peers[0];
+    last_seen_at_ = now;
+    seen_ = true;
+    return;
+  }
+  if (came_and_went) {  // it was there between the last cycle and this one
+    last_seen_ = current.last;
+    last_seen_at_ = now;
+    seen_ = true;
+  }
+  if (seen_ && now - last_seen_at_ <= hold_) {
+    describe_origin(last_seen_, origin);
+    alerts.add("twin: another hub published {} from {} until {:.1f} s ago", last_seen_.topic.view(),
+               origin.view(), to_seconds(now - last_seen_at_));
+  }
+}
+
+}  // namespace hubrt::assembly

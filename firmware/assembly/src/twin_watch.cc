@@ -1,0 +1,116 @@
+#include "hubrt/assembly/twin_watch.h"
+
+#include <thread>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace hubrt::assembly {
+namespace {
+
+std::string describe(const TwinPeer& peer) {
+  runtime::TextBuffer<128> origin;
+  describe_origin(peer, origin);
+  std::string text = fmt::format("{} from {}", peer.topic.view(), origin.view());
+  if (peer.topics > 1) text += fmt::format(" (and {} more State topics)", peer.topics - 1);
+  return text;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<TwinWatch>> TwinWatch::start(const dds::Participant& participant,
+                                                      std::string ros_namespace, std::string hub_name,
+                                                      std::shared_ptr<spdlog::logger> log) {
+  std::unique_ptr<TwinWatch> watch(new TwinWatch(hub_name, log ? std::move(log) : spdlog::default_logger()));
+  TwinWatch* self = watch.get();
+  auto writers = dds::WriterWatch::start(
+      participant,
+      [ns = std::move(ros_namespace), hub = std::move(hub_name)](std::string_view topic) {
+        return is_own_state_topic(topic, ns, hub);
+      },
+      [self](const std::vector<dds::WatchedWriter>& list) { self->changed(list); });
+  if (!writers) return std::move(writers).error();
+  watch->writers_ = std::move(*writers);
+  return watch;
+}
+
+TwinWatch::~TwinWatch() {
+  writers_.reset();  // no callback runs after this
+}
+
+void TwinWatch::changed(const std::vector<dds::WatchedWriter>& writers) {
+  TwinSnapshot snapshot = summarize_twins(writers);
+  {
+    const std::lock_guard lock(mutex_);
+    snapshot.sightings = snapshot_.sightings + (snapshot.count > 0 ? 1 : 0);
+    snapshot.last = snapshot.count > 0 ? snapshot.peers[0] : snapshot_.last;
+    snapshot_ = snapshot;
+  }
+  generation_.fetch_add(1, std::memory_order_release);
+  // Logged here, on Cyclone's thread, rather than in the cycle (logging allocates).
+  if (snapshot.count == 0) {
+    if (had_twins_)
+      log_->info("twin: no other participant publishes the States of hub '{}' any more", hub_name_);
+    had_twins_ = false;
+    return;
+  }
+  had_twins_ = true;
+  for (std::size_t i = 0; i < snapshot.count; ++i) {
+    log_->error("twin: another hub publishes {}", describe(snapshot.peers[i]));
+  }
+}
+
+Expected<void> TwinWatch::check_at_start(Duration window) const {
+  log_->debug("twin: watching discovery for {} ms for another participant publishing the States of hub '{}'",
+              std::chrono::duration_cast<std::chrono::milliseconds>(window).count(), hub_name_);
+  // Polled rather than waited on: the window is short and this runs once, before the cycle.
+  const auto deadline = std::chrono::steady_clock::now() + window;
+  std::uint64_t seen = 0;
+  TwinSnapshot snapshot;
+  for (;;) {
+    copy_if_changed(seen, snapshot);
+    if (snapshot.count > 0) break;
+    if (std::chrono::steady_clock::now() >= deadline) return {};
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  std::string twins;
+  for (std::size_t i = 0; i < snapshot.count; ++i) {
+    twins += fmt::format("{}{}", i == 0 ? "" : "; ", describe(snapshot.peers[i]));
+  }
+  if (snapshot.more > 0) twins += fmt::format("; and {} more", snapshot.more);
+  return make_error(
+      ErrorCode::kBusy,
+      fmt::format("twin: another hub already publishes the States of hub '{}': {}; refusing to "
+                  "start (no device opened, no output touched): stop the other hub, or give this "
+                  "one another name (--name)",
+                  hub_name_, twins));
+}
+
+void TwinWatch::copy_if_changed(std::uint64_t& seen, TwinSnapshot& out) const noexcept {
+  const std::uint64_t generation = generation_.load(std::memory_order_acquire);
+  if (generation == seen) return;
+  const std::lock_guard lock(mutex_);
+  out = snapshot_;
+  seen = generation;
+}
+
+void TwinStage::before_nodes(const Instant& now) noexcept {
+  watch_.copy_if_changed(seen_, snapshot_);
+  monitor_.update(snapshot_, now.mono, alerts_);
+}
+
+void TwinStage::after_nodes(const Instant& /*now*/, bool publish_all, bool /*took_effect*/) noexcept {
+  // Only after a periodic cycle: every node's State with the twin report has gone out.
+  if (!publish_all || stop_requested_ || !monitor_.must_yield()) return;
+  stop_requested_ = true;
+  if (request_stop_) request_stop_();
+}
+
+std::string TwinStage::yield_message() const {
+  return fmt::format(
+      "twin: another hub publishes {} and started earlier than this one: this one is the later "
+      "and stops",
+      describe(monitor_.yielded_to()));
+}
+
+}  // namespace hubrt::assembly
