@@ -66,6 +66,18 @@ TEST(ToJson, NullStringsAndEmptySequencesOfAZeroSample) {
   EXPECT_EQ(j["echo"]["action"], "");
 }
 
+// Found by fuzz/field_value: a string that is not UTF-8 (any peer can send one; Cyclone checks
+// only the terminating NUL) made dump() throw, e.g. in hubctl echo --json. Each bad byte now
+// shows as U+FFFD; well-formed multi-byte characters stay as they are.
+TEST(ToJson, StringsThatAreNotUtf8DumpWithReplacementCharacters) {
+  OwnedSample<hub_msgs_msg_dds__DockState_> s;
+  s->name = dds_string_dup("a\xFF\xC3\xA9\xE0\x80\x80z");  // bad, é, overlong NUL (3 bad bytes), z
+  const Json json = to_json(s.type(), s.get());
+  std::string text;
+  ASSERT_NO_THROW(text = json.dump());
+  EXPECT_EQ(json["name"].get<std::string>(), "a\xEF\xBF\xBD\xC3\xA9\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBDz");
+}
+
 TEST(ToJson, ConvertsToPlainNlohmannJson) {
   OwnedSample<hub_msgs_msg_dds__DockState_> s;
   fill_by_hand(*s);

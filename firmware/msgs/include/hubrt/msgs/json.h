@@ -3,7 +3,8 @@
 //
 // Mapping: struct <-> object (fields in declaration order), sequence and array <-> array,
 // bool <-> true/false, integers and octet <-> integers, float32/float64 <-> numbers (NaN and
-// infinities become null, and null reads back as NaN), string <-> string.
+// infinities become null, and null reads back as NaN), string <-> string (to JSON, a byte that is
+// not part of well-formed UTF-8 becomes U+FFFD: JSON text is UTF-8, and a peer's string need not be).
 #pragma once
 
 #include <nlohmann/json.hpp>
