@@ -2,6 +2,7 @@
 #   make demo        build and run the simulated station with a live view of every State
 #   make test        the default suite: ASan+UBSan build, all tests; TSan build, threaded tests
 #   make bench       benchmarks, results into docs/benchmarks.md (slow; not in the default suite)
+#   make fuzz        every libFuzzer harness for FUZZ_SECONDS (60) each, clang build (fuzz/README.md)
 #   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
 #                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
 #   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
@@ -12,9 +13,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,10p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,11p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench kernel-test cross-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench fuzz kernel-test cross-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -49,6 +50,15 @@ bench:
 	@$(CMAKE_BUILD) host-release -j$(JOBS) --target bench-programs
 	@bench/run --build-dir build/host-release
 
+# libFuzzer harnesses (fuzz/): clang with ASan+UBSan, each harness run on a scratch copy of its
+# seed corpus; non-zero on any crash, whose input stays in build/fuzz/fuzz-artifacts/.
+FUZZ_SECONDS ?= 60
+fuzz:
+	@toolchain/install-deps --fuzz
+	@cmake --preset fuzz >/dev/null
+	@$(CMAKE_BUILD) fuzz -j$(JOBS)
+	@toolchain/fuzz --seconds $(FUZZ_SECONDS) --build-dir build/fuzz
+
 # Which build's "kernel" tests the VM runs: host-debug, or host-asan after `make test` (then
 # nothing is rebuilt).
 KERNEL_PRESET ?= host-debug
@@ -78,4 +88,5 @@ format-check:
 lint: format-check
 	@cmake --preset host-debug >/dev/null
 	@$(CMAKE_BUILD) host-debug -j$(JOBS)
-	@git ls-files '*.cc' | grep -v '/test/' | xargs -P$(JOBS) -n8 clang-tidy -p build/host-debug --quiet
+	@# fuzz/ is built only by the fuzz preset, so host-debug's compilation database has no entry for it.
+	@git ls-files '*.cc' | grep -v '/test/' | grep -v '^fuzz/' | xargs -P$(JOBS) -n8 clang-tidy -p build/host-debug --quiet

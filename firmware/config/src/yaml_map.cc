@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -37,6 +38,43 @@ std::string join_choices(std::initializer_list<std::string_view> choices) {
   return fmt::format("{}", fmt::join(choices, ", "));
 }
 
+// Nodes a document may have, aliases counted each time they are used: far above any real file,
+// low enough that a few nested aliases (each repeating the one before) cannot make the readers
+// walk billions of nodes.
+constexpr std::size_t kMaxNodes = 100'000;
+
+// Every mapping key in the document is a scalar. The readers take keys as names
+// (Node::as<std::string>(), which throws YAML::TypedBadConversion for a mapping or list used as a
+// key, e.g. "? {a: 1}\n: x"), so such a document is refused here, with where the key is.
+// Iterative: nesting depth costs no stack.
+Expected<void> check_keys(const YAML::Node& root, const std::string& name) {
+  std::vector<YAML::Node> pending{root};
+  std::size_t seen = 0;
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (++seen > kMaxNodes) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: more than {} YAML nodes (aliases count each time they are used)",
+                                    name, kMaxNodes));
+    }
+    if (node.IsMap()) {
+      for (const auto& item : node) {
+        if (!item.first.IsScalar()) {
+          const YAML::Mark mark = item.first.Mark();
+          return make_error(ErrorCode::kInvalidArgument,
+                            fmt::format("{}:{}:{}: a key must be a plain name, not {}", name, mark.line + 1,
+                                        mark.column + 1, describe(item.first)));
+        }
+        pending.push_back(item.second);
+      }
+    } else if (node.IsSequence()) {
+      for (const auto& item : node) pending.push_back(item);
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 YamlMap::YamlMap(std::shared_ptr<const std::string> file, const YAML::Node& node, std::string path)
@@ -56,6 +94,7 @@ Expected<YamlMap> YamlMap::load_string(const std::string& text, const std::strin
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: expected a mapping at the top level, got {}", name, describe(root)));
   }
+  if (auto keys = check_keys(root, name); !keys) return std::move(keys).error();
   if (auto unique = detail::check_unique_keys(root, name); !unique) return std::move(unique).error();
   return YamlMap(file, root, "");
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 namespace hubrt::config {
@@ -151,6 +152,33 @@ TEST_F(YamlMapFiles, AFileWithInvalidUtf8IsRefused) {
   ASSERT_FALSE(loaded);
   EXPECT_TRUE(loaded.error().message.starts_with(path.string() + ":3:7: not valid UTF-8 (byte 0xC0): "))
       << loaded.error().message;
+}
+
+// Found by fuzz/hub_yaml and fuzz/scenario: a mapping (or list) used as a key made only_keys() and
+// keys() throw yaml-cpp's bad conversion out of hubd --check and hubctl play. The document is
+// refused when loaded, naming where the key is.
+TEST(YamlMap, KeysThatAreNotPlainNamesAreRefused) {
+  for (const char* text : {"name: x\n? {a: 1}\n: y\n", "nodes:\n  - ? [1, 2]\n    : y\n"}) {
+    auto map = YamlMap::load_string(text, "cfg.yaml");
+    ASSERT_FALSE(map) << text;
+    EXPECT_THAT(map.error().message, ::testing::HasSubstr("a key must be a plain name"));
+  }
+  auto nested = YamlMap::load_string("name: x\n? {a: 1}\n: y\n", "cfg.yaml");
+  ASSERT_FALSE(nested);
+  EXPECT_EQ(nested.error().message, "cfg.yaml:2:3: a key must be a plain name, not a mapping");
+}
+
+// Aliases repeating aliases: the readers would walk every repetition; refused instead.
+TEST(YamlMap, AliasBombsAreRefused) {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 9; ++i) {
+    text += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int j = 0; j < 10; ++j) text += (j ? ", *a" : "*a") + std::to_string(i - 1);
+    text += "]\n";
+  }
+  auto map = YamlMap::load_string(text, "cfg.yaml");
+  ASSERT_FALSE(map);
+  EXPECT_THAT(map.error().message, ::testing::HasSubstr("more than 100000 YAML nodes"));
 }
 
 }  // namespace

@@ -166,6 +166,7 @@ std::string describe_json(const Json& value) {
   }
 }
 
+
 Json slot_to_json(const FieldInfo& slot, const void* addr) {
   switch (slot.kind) {
     case FieldKind::kString: {

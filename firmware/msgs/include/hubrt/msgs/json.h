@@ -3,7 +3,9 @@
 //
 // Mapping: struct <-> object (fields in declaration order), sequence and array <-> array,
 // bool <-> true/false, integers and octet <-> integers, float32/float64 <-> numbers (NaN and
-// infinities become null, and null reads back as NaN), string <-> string.
+// infinities become null, and null reads back as NaN), string <-> string (to JSON, a byte that is
+// not part of well-formed UTF-8 is escaped as \xHH: JSON text is UTF-8, and a peer's string need
+// not be; invalid_utf8_fields() names such fields).
 #pragma once
 
 #include <string>
