@@ -138,6 +138,8 @@ class SmartToolLogic {
   [[nodiscard]] RunOutput wanted_output() const noexcept;
   [[nodiscard]] std::string_view activity() const noexcept;
   void format_reasons(std::uint16_t reasons) noexcept;
+  // The controller's status values, or "unknown" for all of them when the status is stale.
+  void report_status(State& state, Time now) noexcept;
 
   SmartToolSettings settings_;
   RunLines lines_;
