@@ -150,11 +150,13 @@ bool SmartToolLogic::read_input(hubs::ReopeningInput& input, bool& unreadable, T
 void SmartToolLogic::read_inputs(Time now) noexcept {
   controller_.poll(now);
   input_error_ = ErrorCode::kOk;
-  bool unreadable = false;
-  pressed_forward_ = read_input(inputs_.button_forward, unreadable, now);
-  pressed_reverse_ = read_input(inputs_.button_reverse, unreadable, now);
+  bool forward_unreadable = false;
+  bool reverse_unreadable = false;
+  pressed_forward_ = read_input(inputs_.button_forward, forward_unreadable, now);
+  pressed_reverse_ = read_input(inputs_.button_reverse, reverse_unreadable, now);
   torque_input_ = read_input(inputs_.torque_reached, torque_unreadable_, now);
   alarm_input_ = read_input(inputs_.summary_alarm, alarm_unreadable_, now);
+  inputs_known_ = !forward_unreadable && !reverse_unreadable && !torque_unreadable_ && !alarm_unreadable_;
   arm_ = arm_sensors_.read(now);
   holder_reading_ = holder_->read(now);
   observe_faults(now);
@@ -615,6 +617,7 @@ void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) 
   state.summary_alarm = alarm_input_;
   state.button_forward = pressed_forward_;
   state.button_reverse = pressed_reverse_;
+  state.inputs_known = inputs_known_;
   state.controller_online = controller_.online(now);
   report_status(state, now);
 

@@ -158,6 +158,7 @@ class SmartToolLogic {
   bool alarm_input_ = false;
   bool torque_unreadable_ = false;          // an unreadable torque-reached input forbids forward runs
   bool alarm_unreadable_ = false;           // an unreadable summary-alarm input forbids running at all
+  bool inputs_known_ = false;               // buttons, torque-reached and summary alarm all read
   ErrorCode input_error_ = ErrorCode::kOk;  // of the last failed button / torque / alarm read
   std::string_view input_error_signal_;
 

@@ -1,6 +1,7 @@
-// The controller's status values in the smart tool's State are current or say "unknown": a
-// status frame older than its validity (350 ms, the heartbeat's limit; the controller sends one
-// every 100 ms) is never shown as the controller's present alarms, program, torque and angle.
+// The device values in the smart tool's State are current or say "unknown": a controller status
+// frame older than its validity (350 ms, the heartbeat's limit; the controller sends one every
+// 100 ms) is never shown as the controller's present alarms, program, torque and angle, and an
+// input that could not be read this cycle is flagged (inputs_known).
 #include <gtest/gtest.h>
 
 #include "reading_age.h"
@@ -70,6 +71,30 @@ TEST_F(SmartToolLogicTest, BeforeTheFirstStatusItsAgeSaysNeverAndItsValuesAreUnk
   cycles(nullptr, 3);
   EXPECT_EQ(state_.status_age_ms, kNeverRead);
   expect_unknown(state_);
+}
+
+TEST_F(SmartToolLogicTest, AnInputThatCannotBeReadThisCycleIsFlaggedUnknown) {
+  make_ready();
+  cycle(nullptr);
+  EXPECT_TRUE(state_.inputs_known);
+  fake_->input("tool.torque_reached")->set(true);
+  cycles(nullptr, 2);  // past the debounce
+  ASSERT_TRUE(state_.torque_reached);
+
+  auto wiring = fake_->wiring("tool.torque_reached");
+  ASSERT_TRUE(wiring.is_ok());
+  ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
+  cycle(nullptr);
+  EXPECT_FALSE(state_.inputs_known) << "the same cycle the read failed";
+  EXPECT_FALSE(state_.torque_reached) << "not the last good reading";
+  EXPECT_NE(errors().find("input tool.torque_reached failed to read: i/o error"), std::string::npos)
+      << errors();
+
+  ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, false).is_ok());
+  cycle(nullptr);
+  EXPECT_TRUE(state_.inputs_known);
+  cycles(nullptr, 2);  // past the debounce, should the debouncer start over
+  EXPECT_TRUE(state_.torque_reached) << "a good read brings the value back";
 }
 
 TEST(ReadingAge, SaturatesInsteadOfWrappingAndNeverGoesNegative) {
