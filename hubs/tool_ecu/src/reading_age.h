@@ -13,10 +13,12 @@ namespace hubrt::tool_ecu {
 // The age of a device that was never read.
 inline constexpr std::uint32_t kNeverRead = std::numeric_limits<std::uint32_t>::max();
 
-// `age` in whole milliseconds, clamped to 0..kNeverRead. A negative age (a reading stamped by
-// another thread just after the cycle took its time) is 0. Thread-safe (pure).
+// `age` in milliseconds rounded up, clamped to 0..kNeverRead. Rounded up so that a reading the
+// hub judged older than a validity of N ms never shows an age of N (500.3 ms is 501, stale;
+// 499.7 ms is 500, current): "age <= validity" and the State's flag always agree. A negative age
+// (a reading stamped by another thread just after the cycle took its time) is 0. Thread-safe.
 [[nodiscard]] constexpr std::uint32_t saturating_age_ms(Duration age) noexcept {
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(age).count();
+  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(age).count();
   if (ms <= 0) return 0;
   if (static_cast<std::uint64_t>(ms) >= kNeverRead) return kNeverRead;
   return static_cast<std::uint32_t>(ms);

@@ -99,7 +99,9 @@ TEST_F(SmartToolLogicTest, AnInputThatCannotBeReadThisCycleIsFlaggedUnknown) {
 
 TEST(ReadingAge, SaturatesInsteadOfWrappingAndNeverGoesNegative) {
   EXPECT_EQ(saturating_age_ms(std::chrono::milliseconds(1234)), 1234u);
-  EXPECT_EQ(saturating_age_ms(std::chrono::microseconds(999)), 0u);
+  EXPECT_EQ(saturating_age_ms(std::chrono::microseconds(500'300)), 501u) << "rounded up: older than 500 ms";
+  EXPECT_EQ(saturating_age_ms(std::chrono::microseconds(499'700)), 500u);
+  EXPECT_EQ(saturating_age_ms(Duration::zero()), 0u);
   EXPECT_EQ(saturating_age_ms(-std::chrono::milliseconds(5)), 0u) << "stamped just after the cycle's time";
   EXPECT_EQ(saturating_age_ms(std::chrono::hours(24 * 60)), kNeverRead) << "60 days do not fit";
   EXPECT_EQ(saturating_age_ms(std::chrono::milliseconds(4294967294LL)), 4294967294u);
