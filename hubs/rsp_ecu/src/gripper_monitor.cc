@@ -15,9 +15,10 @@ void GripperMonitor::observe(bool a_readable, bool a, bool b_readable, bool b, T
   line_a_ = a;
   line_b_ = b;
   if (!a_readable || !b_readable) {
-    // The input's own error says which line; nothing about the gripper can be confirmed.
+    // The input's own error says which line; nothing about the gripper can be confirmed, and
+    // nothing is claimed either (no fault: a line that cannot be read is not a failed grip).
     disagree_since_.reset();
-    confirm_ = Confirm::kFailed;
+    confirm_ = Confirm::kUnknown;
     return;
   }
   if (a == b) {
@@ -70,6 +71,8 @@ const char* GripperMonitor::confirm_name() const noexcept {
       return "moving";
     case Confirm::kFailed:
       return "failed";
+    case Confirm::kUnknown:
+      return "unknown";
   }
   return "failed";
 }

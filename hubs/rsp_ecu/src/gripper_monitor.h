@@ -20,7 +20,8 @@ class GripperMonitor {
     kNotConnected,  // both lines off: gripper open
     kConnected,     // both lines on: gripper closed
     kMoving,        // they disagree, for less than the confirm time so far
-    kFailed,        // they disagree for longer, or a line cannot be read
+    kFailed,        // they disagree for longer
+    kUnknown,       // a line cannot be read: nothing is confirmed, nothing claimed
   };
 
   explicit GripperMonitor(Duration confirm_time) noexcept : confirm_time_(confirm_time) {}

@@ -215,6 +215,9 @@ void RspLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) no
   state.gripper = wire(gripper_grab_ ? "grab" : "release");
   state.gripper_confirm = wire(gripper_.confirm_name());
   state.pressure_ok = pressure_ok_;
+  // A GPIO line is read every cycle: its reading is current or, when the read failed or the chip
+  // is gone, unknown (pressure_ok is then false: no proof of pressure).
+  state.pressure_known = devices_.pressure.readable;
   state.safe_state = safe_state_;
 
   if (pressure_fault_)

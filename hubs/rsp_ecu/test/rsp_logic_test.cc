@@ -419,6 +419,7 @@ TEST_F(RspLogicTest, APressureDropMidOperationLatchesAndHoldsTheSafeStateUntilRe
   fake_->pressure_supply("main_air")->drop();
   RspState state = run_for(logic, milliseconds(100), &release);  // past the switch's 50 ms debounce
   EXPECT_FALSE(state.pressure_ok);
+  EXPECT_TRUE(state.pressure_known) << "a switch that reads off is a known pressure loss";
   EXPECT_TRUE(state.safe_state);
   EXPECT_TRUE(
       errors_.contains("pressure failure: supply pressure lost (rsp.pressure_ok off) (latched: lock held "
@@ -478,12 +479,24 @@ TEST_F(RspLogicTest, APressureDropWhileOpenClosesTheLockAndAResetWithoutPressure
 TEST_F(RspLogicTest, AnUnreadablePressureSwitchIsAPressureFailure) {
   auto wiring = fake_->wiring("rsp.pressure_ok");
   ASSERT_TRUE(wiring.is_ok());
-  ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
   RspLogic logic = make_logic();
-  const RspState state = cycle(logic, nullptr);
-  EXPECT_FALSE(state.pressure_ok);
+  RspState state = run_for(logic, milliseconds(100), nullptr);  // past the switch's 50 ms debounce
+  ASSERT_TRUE(state.pressure_ok);
+  EXPECT_TRUE(state.pressure_known);
+
+  ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
+  clock_.advance(kCycle);
+  state = cycle(logic, nullptr);
+  EXPECT_FALSE(state.pressure_known) << "the read failed: the pressure is unknown this very cycle";
+  EXPECT_FALSE(state.pressure_ok) << "not the last good reading";
   EXPECT_TRUE(errors_.contains("pressure failure: pressure switch rsp.pressure_ok cannot be read"))
       << errors_.at(0);
+
+  ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, false).is_ok());
+  state = run_for(logic, milliseconds(100), nullptr);
+  EXPECT_TRUE(state.pressure_known);
+  EXPECT_TRUE(state.pressure_ok) << "a good read brings the value back (the failure stays latched)";
+  EXPECT_TRUE(logic.fault_latched());
 }
 
 // --- Safe states -----------------------------------------------------------------------------------
@@ -543,6 +556,7 @@ TEST_F(RspLogicTest, AMissingChipIsReportedEverythingStaysLockedAndItRecovers) {
   EXPECT_STREQ(state.tool, "undefined");
   EXPECT_FALSE(state.unlock_allowed);
   EXPECT_FALSE(state.pressure_ok);
+  EXPECT_FALSE(state.pressure_known) << "the chip is gone";
   EXPECT_TRUE(errors_.contains("output rsp.lock_valve not available:")) << errors_.at(0);
   EXPECT_TRUE(errors_.contains("input rsp.tool_id.smart_tool not available:"));
 

@@ -8,6 +8,8 @@
 
 #include "hubrt/protocol/lift_drive_modbus.h"
 
+#include "reading_age.h"
+
 namespace hubrt::tool_ecu {
 
 namespace ld = protocol::lift_drive;
@@ -143,6 +145,51 @@ void LiftLogic::enter_safe_state() noexcept {
   worker_->post(intent_);
 }
 
+void LiftLogic::report_reading(State& state, bool current) const noexcept {
+  if (!current) {
+    // The last reading is older than its validity: nothing of it is shown as current (the wire
+    // contract's "unknown": "", 0, false). Above all `moving` is not true from it, and not "at".
+    state.at = wire("");
+    state.position_mm = 0.0F;
+    state.speed_mm_s = 0.0F;
+    state.enabled = false;
+    state.moving = false;
+    state.in_position = false;
+    state.fault = false;
+    state.fault_code = 0;
+    state.fault_text = wire("unknown");
+    return;
+  }
+  const int at = position_at();
+  state.at = at >= 0 ? wire(settings_.positions[static_cast<std::size_t>(at)].name) : wire("");
+  state.position_mm = static_cast<float>(ld::to_mm(snap_.position_tenth_mm));
+  state.speed_mm_s = static_cast<float>(snap_.speed_mm_s);
+  state.enabled = (snap_.status_word & ld::status::kEnabled) != 0;
+  state.moving = (snap_.status_word & ld::status::kMoving) != 0;
+  state.in_position = (snap_.status_word & ld::status::kInPosition) != 0;
+  state.fault = (snap_.status_word & ld::status::kFault) != 0;
+  state.fault_code = snap_.fault_code;
+  state.fault_text = wire(fault_name(snap_.fault_code));
+}
+
+void LiftLogic::report_unknown_motion(runtime::ErrorList& errors) const noexcept {
+  // The hub cannot stop a drive it cannot reach (the worker writes only after a successful read),
+  // so "stopped" would be a guess: the drive carries on with its last command until its own
+  // communication watchdog trips (docs/protocols/lift-drive-modbus.md, "Watchdog").
+  const bool was_moving = (snap_.status_word & ld::status::kMoving) != 0;
+  if (settings_.drive_watchdog_ms == 0) {
+    errors.add(
+        "lift motion unknown: last seen at {:.1f} mm{}; the drive's watchdog is off "
+        "(drive_watchdog_ms 0), so it finishes its last command",
+        ld::to_mm(snap_.position_tenth_mm), was_moving ? ", moving" : "");
+  } else {
+    errors.add(
+        "lift motion unknown: last seen at {:.1f} mm{}; the drive's own watchdog stops it "
+        "{} ms after the last request it got",
+        ld::to_mm(snap_.position_tenth_mm), was_moving ? ", moving" : "", settings_.drive_watchdog_ms);
+  }
+}
+
 int LiftLogic::position_at() const noexcept {
   if (!online_ || (snap_.status_word & ld::status::kInPosition) == 0) return -1;
   for (std::size_t i = 0; i < settings_.positions.size(); ++i) {
@@ -154,32 +201,29 @@ int LiftLogic::position_at() const noexcept {
 }
 
 void LiftLogic::report(State& state, runtime::ErrorList& errors, Time now) noexcept {
-  const int at = position_at();
-  state.at = at >= 0 ? wire(settings_.positions[static_cast<std::size_t>(at)].name) : wire("");
   state.target = target_ >= 0 ? wire(settings_.positions[static_cast<std::size_t>(target_)].name) : wire("");
   state.target_mm =
       target_ >= 0
           ? static_cast<float>(ld::to_mm(settings_.positions[static_cast<std::size_t>(target_)].tenth_mm))
           : 0.0F;
-  state.position_mm = static_cast<float>(ld::to_mm(snap_.position_tenth_mm));
-  state.speed_mm_s = static_cast<float>(snap_.speed_mm_s);
-  state.drive_online = online_;
-  state.enabled = (snap_.status_word & ld::status::kEnabled) != 0;
-  state.moving = (snap_.status_word & ld::status::kMoving) != 0;
-  state.in_position = (snap_.status_word & ld::status::kInPosition) != 0;
-  state.fault = (snap_.status_word & ld::status::kFault) != 0;
-  state.fault_code = snap_.fault_code;
-  state.fault_text = wire(fault_name(snap_.fault_code));
+  // Judged again at the State's own time: a State rebuilt later than read_inputs() (a command
+  // taking effect mid-cycle) must not show a reading that has gone stale meanwhile.
+  const bool current = snap_.answered && now - snap_.read_at <= settings_.answer_within;
+  state.drive_online = current;
+  state.reading_age_ms = reading_age_ms(snap_.answered, snap_.read_at, now);
+  report_reading(state, current);
 
   if (!snap_.answered) {
     if (now - created_ > settings_.answer_within) {
-      errors.add("lift drive {}: no answer since start (last error: {}); lift stopped", endpoint_,
+      errors.add("lift drive {}: no answer since start (last error: {}); lift state unknown", endpoint_,
                  to_string(snap_.last_error));
     }
   } else if (not_answering_.present()) {
-    errors.add("lift drive {} not answering for {:.2f} s (limit {:.2f} s, last error: {}); lift stopped",
-               endpoint_, to_seconds(now - snap_.read_at), to_seconds(settings_.answer_within),
-               to_string(snap_.last_error));
+    errors.add(
+        "lift drive {} not answering for {:.2f} s (limit {:.2f} s, last error: {}); lift state unknown",
+        endpoint_, to_seconds(now - snap_.read_at), to_seconds(settings_.answer_within),
+        to_string(snap_.last_error));
+    report_unknown_motion(errors);
   } else if (not_answering_.only_latched()) {
     errors.add("lift drive {} stopped answering for a while; send reset to clear", endpoint_);
   }

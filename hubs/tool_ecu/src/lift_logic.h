@@ -6,6 +6,11 @@
 // hold; the power stage is never switched on for it. A drive fault and a drive that stopped
 // answering latch until a reset; a reset also pulses the drive's reset-fault bit. Motion resumes
 // only with a fresh "move" after the reset.
+//
+// A drive reading is valid for answer_within: an older one is never reported as current (the
+// State's drive values read "unknown", `moving` false, drive_online false, reading_age_ms its
+// age), and a drive that does not answer is not claimed "stopped": it cannot be told to stop, and
+// runs on until its own communication watchdog stops it.
 #pragma once
 
 #include <array>
@@ -61,6 +66,9 @@ class LiftLogic {
             Time created, std::shared_ptr<spdlog::logger> log);
   [[nodiscard]] int position_index(std::string_view name) const noexcept;
   [[nodiscard]] int position_at() const noexcept;
+  // The drive's values of this cycle's reading, or "unknown" for all of them when it is stale.
+  void report_reading(State& state, bool current) const noexcept;
+  void report_unknown_motion(runtime::ErrorList& errors) const noexcept;
 
   LiftSettings settings_;
   std::unique_ptr<LiftDriveWorker> worker_;

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "reading_age.h"
+
 namespace hubrt::tool_ecu {
 
 namespace st = protocol::smart_tool;
@@ -148,11 +150,13 @@ bool SmartToolLogic::read_input(hubs::ReopeningInput& input, bool& unreadable, T
 void SmartToolLogic::read_inputs(Time now) noexcept {
   controller_.poll(now);
   input_error_ = ErrorCode::kOk;
-  bool unreadable = false;
-  pressed_forward_ = read_input(inputs_.button_forward, unreadable, now);
-  pressed_reverse_ = read_input(inputs_.button_reverse, unreadable, now);
+  bool forward_unreadable = false;
+  bool reverse_unreadable = false;
+  pressed_forward_ = read_input(inputs_.button_forward, forward_unreadable, now);
+  pressed_reverse_ = read_input(inputs_.button_reverse, reverse_unreadable, now);
   torque_input_ = read_input(inputs_.torque_reached, torque_unreadable_, now);
   alarm_input_ = read_input(inputs_.summary_alarm, alarm_unreadable_, now);
+  inputs_known_ = !forward_unreadable && !reverse_unreadable && !torque_unreadable_ && !alarm_unreadable_;
   arm_ = arm_sensors_.read(now);
   holder_reading_ = holder_->read(now);
   observe_faults(now);
@@ -572,6 +576,36 @@ void SmartToolLogic::enter_safe_state() noexcept {
 
 // --- State -------------------------------------------------------------------------------------
 
+void SmartToolLogic::report_status(State& state, Time now) noexcept {
+  const bool fresh = controller_.status_fresh(now);
+  state.status_fresh = fresh;
+  state.status_age_ms = reading_age_ms(controller_.has_status(), controller_.status_received_at(), now);
+  if (!fresh) {
+    // A status older than its validity is not shown as current (the wire contract's "unknown").
+    alarms_text_.assign("unknown");
+    selected_text_.assign("unknown");
+    state.controller_alarms = wire(alarms_text_.c_str());
+    state.selected_program = wire(selected_text_.c_str());
+    state.torque_nm = 0.0F;
+    state.angle_deg = 0.0F;
+    return;
+  }
+  const st::Status& status = controller_.status();
+  join_bits(alarms_text_, status.alarms, kAlarmNames);
+  state.controller_alarms = wire(alarms_text_.c_str());
+  const int selected = selected_program();
+  if (selected >= 0) {
+    selected_text_.assign(settings_.programs[static_cast<std::size_t>(selected)].name);
+  } else if (status.program != 0) {
+    selected_text_.format("number {}", status.program);  // not selected by this hub
+  } else {
+    selected_text_.clear();
+  }
+  state.selected_program = wire(selected_text_.c_str());
+  state.torque_nm = static_cast<float>(st::to_newton_metres(status.torque_cnm));
+  state.angle_deg = static_cast<float>(st::to_degrees(status.angle_ddeg));
+}
+
 void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) noexcept {
   state.output = wire(to_string(lines_.shown()));
   state.activity = wire(activity());
@@ -583,22 +617,9 @@ void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) 
   state.summary_alarm = alarm_input_;
   state.button_forward = pressed_forward_;
   state.button_reverse = pressed_reverse_;
+  state.inputs_known = inputs_known_;
   state.controller_online = controller_.online(now);
-  const bool has_status = controller_.has_status();
-  join_bits(alarms_text_, has_status ? controller_.status().alarms : std::uint8_t{0}, kAlarmNames);
-  state.controller_alarms = wire(alarms_text_.c_str());
-  const int selected = selected_program();
-  if (selected >= 0) {
-    selected_text_.assign(settings_.programs[static_cast<std::size_t>(selected)].name);
-  } else if (has_status && controller_.status().program != 0) {
-    selected_text_.format("number {}", controller_.status().program);  // not selected by this hub
-  } else {
-    selected_text_.clear();
-  }
-  state.selected_program = wire(selected_text_.c_str());
-  state.torque_nm =
-      has_status ? static_cast<float>(st::to_newton_metres(controller_.status().torque_cnm)) : 0.0F;
-  state.angle_deg = has_status ? static_cast<float>(st::to_degrees(controller_.status().angle_ddeg)) : 0.0F;
+  report_status(state, now);
 
   SmartToolResult& result = state.last_result;
   result.run_id = last_.run_id;

@@ -138,6 +138,8 @@ class SmartToolLogic {
   [[nodiscard]] RunOutput wanted_output() const noexcept;
   [[nodiscard]] std::string_view activity() const noexcept;
   void format_reasons(std::uint16_t reasons) noexcept;
+  // The controller's status values, or "unknown" for all of them when the status is stale.
+  void report_status(State& state, Time now) noexcept;
 
   SmartToolSettings settings_;
   RunLines lines_;
@@ -156,6 +158,7 @@ class SmartToolLogic {
   bool alarm_input_ = false;
   bool torque_unreadable_ = false;          // an unreadable torque-reached input forbids forward runs
   bool alarm_unreadable_ = false;           // an unreadable summary-alarm input forbids running at all
+  bool inputs_known_ = false;               // buttons, torque-reached and summary alarm all read
   ErrorCode input_error_ = ErrorCode::kOk;  // of the last failed button / torque / alarm read
   std::string_view input_error_signal_;
 

@@ -83,6 +83,7 @@ void ToolController::handle(const hal::CanFrame& frame, Time now) noexcept {
   } else if (auto status = st::decode_status(frame, node_id_)) {
     status_ = *status;
     ++status_count_;
+    last_status_ = now;
   } else if (auto result = st::decode_result(frame, node_id_)) {
     result_ = *result;
   } else if (auto ack = st::decode_program_ack(frame, node_id_)) {

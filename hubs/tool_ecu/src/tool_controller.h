@@ -56,6 +56,13 @@ class ToolController {
   [[nodiscard]] bool has_status() const noexcept { return status_count_ > 0; }
   [[nodiscard]] const protocol::smart_tool::Status& status() const noexcept { return status_; }
   [[nodiscard]] std::uint64_t status_count() const noexcept { return status_count_; }
+  // When the latest status was received (the poll's time); meaningless before the first.
+  [[nodiscard]] Time status_received_at() const noexcept { return last_status_; }
+  // A status arrived within protocol::smart_tool::kControllerLostAfter: the controller sends one
+  // every 100 ms, so the heartbeat's limit applies to it too. Older values are not current.
+  [[nodiscard]] bool status_fresh(Time now) const noexcept {
+    return has_status() && now - last_status_ <= protocol::smart_tool::kControllerLostAfter;
+  }
   [[nodiscard]] bool running() const noexcept {
     return (status_.flags & protocol::smart_tool::status_flag::kRunning) != 0;
   }
@@ -97,6 +104,7 @@ class ToolController {
 
   protocol::smart_tool::Status status_;
   std::uint64_t status_count_ = 0;
+  Time last_status_{};
   std::optional<protocol::smart_tool::RunResult> result_;
   std::optional<protocol::smart_tool::ProgramAck> ack_;
 };

@@ -31,6 +31,12 @@ Expected<ToolProgram> parse_program(const std::string& name, const config::YamlM
     return std::move(ok).error();
   }
   if (auto ok = usable_name(map, "number", name, "program"); !ok) return std::move(ok).error();
+  if (name == "unknown") {
+    // The State's selected_program reads "unknown" when the controller's status is stale.
+    return map.error_at("number",
+                        "'unknown' is reserved: the State says selected_program 'unknown' "
+                        "when the controller's status is not current");
+  }
   ToolProgram program{name, {}};
   auto number = map.integer("number", 1, 255);
   if (!number) return std::move(number).error();

@@ -8,12 +8,15 @@
 #include <functional>
 #include <thread>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "hubrt/config/hub_config.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/protocol/lift_drive_modbus.h"
+
+#include "reading_age.h"
 
 namespace hubrt::tool_ecu {
 namespace {
@@ -312,7 +315,8 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   }
   EXPECT_FALSE(state_.drive_online);
   EXPECT_NE(errors().find("not answering for 0.6"), std::string::npos) << errors();
-  EXPECT_NE(errors().find("limit 0.50 s, last error: timeout); lift stopped"), std::string::npos) << errors();
+  EXPECT_NE(errors().find("limit 0.50 s, last error: timeout); lift state unknown"), std::string::npos)
+      << errors();
 
   server_->set_answering(true);
   ASSERT_TRUE(wait_worker(
@@ -330,6 +334,72 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
 }
 
+// The drive stops answering mid-move. Its last reading (moving up at 100 mm/s) holds for
+// answer_within (500 ms); after that the State shows nothing of it as current, while the drive
+// really does carry on until its own communication watchdog (1000 ms, from the hub file) stops it.
+TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirmsTheLift) {
+  start();
+  const Order home = move("home");
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving && state_.position_mm > 20.0F; }));
+  server_->set_answering(false);
+  ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }));
+  const Time last_read = logic_->snapshot().read_at;
+  const float last_seen_mm = state_.position_mm;
+
+  clock_.set(last_read + milliseconds(500));  // the reading's last valid moment
+  cycle(&home);
+  EXPECT_TRUE(state_.drive_online);
+  EXPECT_EQ(state_.reading_age_ms, 500u);
+  EXPECT_TRUE(state_.moving) << "still within its validity";
+
+  clock_.set(last_read + milliseconds(501));
+  cycle(&home);
+  EXPECT_FALSE(state_.drive_online);
+  EXPECT_EQ(state_.reading_age_ms, 501u);
+  EXPECT_FALSE(state_.moving) << "never true from a stale reading";
+  EXPECT_FALSE(state_.enabled);
+  EXPECT_FALSE(state_.in_position);
+  EXPECT_FALSE(state_.fault);
+  EXPECT_EQ(state_.fault_code, 0);
+  EXPECT_STREQ(state_.fault_text, "unknown");
+  EXPECT_STREQ(state_.at, "");
+  EXPECT_EQ(state_.position_mm, 0.0F);
+  EXPECT_EQ(state_.speed_mm_s, 0.0F);
+  EXPECT_STREQ(state_.target, "home") << "the command's target is the hub's own, not a reading";
+  EXPECT_EQ(errors().find("stopped"), std::string::npos) << "nobody knows it stopped: " << errors();
+  EXPECT_NE(errors().find(fmt::format("lift motion unknown: last seen at {:.1f} mm, moving; the drive's own "
+                                      "watchdog stops it 1000 ms after the last request it got",
+                                      last_seen_mm)),
+            std::string::npos)
+      << errors();
+  // Indeed the simulated drive moved on: 50 mm in those 500 ms.
+  EXPECT_GT(drive_->position_mm(clock_.now().mono), last_seen_mm + 40.0);
+
+  // Its watchdog trips 1000 ms after the last request it got (about the last read).
+  clock_.set(last_read + milliseconds(1200));
+  cycle(&home);
+  EXPECT_EQ(state_.reading_age_ms, 1200u);
+  EXPECT_FALSE(state_.moving);
+  const auto drive = drive_->read(clock_.now().mono);
+  EXPECT_EQ(drive.input[ld::input::kFaultCode], static_cast<std::uint16_t>(ld::FaultCode::kWatchdog));
+  EXPECT_EQ(drive.input[ld::input::kStatusWord] & ld::status::kMoving, 0);
+
+  // A fresh reading confirms it: stopped by its watchdog, values current again.
+  server_->set_answering(true);
+  step(&home);
+  EXPECT_TRUE(state_.drive_online);
+  EXPECT_LE(state_.reading_age_ms, 100u);
+  EXPECT_FALSE(state_.moving);
+  EXPECT_TRUE(state_.fault);
+  EXPECT_EQ(state_.fault_code, 4);
+  EXPECT_STREQ(state_.fault_text, "communication watchdog");
+  EXPECT_NEAR(state_.position_mm, drive_->position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
+  EXPECT_GT(state_.position_mm, last_seen_mm + 80.0F) << "where the drive went on its own";
+  EXPECT_EQ(errors().find("lift motion unknown"), std::string::npos) << errors();
+  EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
+      << errors();
+}
+
 TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
   server_->set_answering(false);
   start();
@@ -341,7 +411,11 @@ TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
   clock_.advance(milliseconds(200));
   cycle(&home);
   EXPECT_FALSE(state_.drive_online);
-  EXPECT_NE(errors().find("no answer since start (last error: timeout); lift stopped"), std::string::npos)
+  EXPECT_EQ(state_.reading_age_ms, kNeverRead);
+  EXPECT_FALSE(state_.moving);
+  EXPECT_STREQ(state_.fault_text, "unknown");
+  EXPECT_NE(errors().find("no answer since start (last error: timeout); lift state unknown"),
+            std::string::npos)
       << errors();
   // A drive that comes up after the hub is normal operation: not latched.
   server_->set_answering(true);

@@ -93,6 +93,10 @@ TEST(ToolSettings, BadSmartToolSettingsNameTheLine) {
   EXPECT_EQ(tool_error("    type: smart_tool\n    programs:\n"
                        "      a: {number: 3, torque_nm: 700, angle_min_deg: 10, angle_max_deg: 90}\n"),
             "tool.yaml:6:33: nodes.tool.programs.a.torque_nm: 700 is out of range [0.01, 655.35]");
+  EXPECT_EQ(tool_error("    type: smart_tool\n    programs:\n"
+                       "      unknown: {number: 3, torque_nm: 5, angle_min_deg: 10, angle_max_deg: 90}\n"),
+            "tool.yaml:6:25: nodes.tool.programs.unknown.number: 'unknown' is reserved: the State says "
+            "selected_program 'unknown' when the controller's status is not current");
   EXPECT_EQ(tool_error(std::string("    type: smart_tool\n    manual_program: q\n") + kProgram),
             "tool.yaml:5:21: nodes.tool.manual_program: 'q' is not one of the programs");
   EXPECT_EQ(tool_error(std::string("    type: smart_tool\n    node_id: 128\n") + kProgram),

@@ -1,0 +1,440 @@
+// The fixture of the hubd Tool ECU tests: hubd running the Tool ECU on the fake HAL, talked to
+// over real Cyclone DDS on loopback in a private domain, in both layouts (node-type and hub). The
+// RSP ECU is played by the test: it publishes hub_msgs/msg/RspState on /rsp_ecu/rsp/state,
+// exactly what the Tool ECU's subscription consumes. The simulated world is changed over
+// /sim/input and /sim/fault. Shared by the hubd_tool_*_test.cc files of one test binary.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "hubrt/dds/reader.h"
+#include "hubrt/dds/sample.h"
+#include "hubrt/dds/topic.h"
+#include "hubrt/dds/writer.h"
+#include "hubrt/sim/sim_bridge_stage.h"
+
+#include "hub_process.h"
+#include "rsp.h"
+#include "tool_messages.h"
+
+// The RSP ECU's State type, for the stand-in RSP ECU (its own hub library is not needed here).
+HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__RspState_, hub_msgs_msg_dds__RspState__desc);
+
+namespace hubrt::integration::tool_test {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+using tool_ecu::LiftCommand;
+using tool_ecu::LiftState;
+using tool_ecu::SmartToolCommand;
+using tool_ecu::SmartToolState;
+using RspState = hub_msgs_msg_dds__RspState_;
+using ToolEcuCommand = hub_msgs_msg_dds__ToolEcuCommand_;
+using ToolEcuState = hub_msgs_msg_dds__ToolEcuState_;
+
+// Generous: a busy 2-core machine running sanitizer builds in parallel. These tests check
+// behaviour, not timing; the benchmarks measure timing.
+inline constexpr auto kPatience = seconds(20);
+
+inline char* wire(const std::string& text) {
+  return const_cast<char*>(text.c_str());  // NOLINT: the wire type wants char*
+}
+inline std::string text(const char* s) {
+  return s == nullptr ? std::string() : std::string(s);
+}
+template <class Sequence>
+std::string joined(const Sequence& list) {
+  std::string out;
+  for (std::uint32_t i = 0; i < list._length; ++i) out += text(list._buffer[i]) + "; ";
+  return out;
+}
+
+// What the planner wants of each node; repeated at a fixed rate by the planner thread.
+struct ToolOrder {
+  std::string action = "idle";
+  std::uint32_t run_id = 0;
+  std::string program;
+};
+struct LiftOrder {
+  std::string action = "stop";
+  std::string position;
+};
+
+// The Tool ECU's States as plain values, the same for both layouts.
+struct ToolView {
+  bool seen = false;
+  bool fresh_msg = false;
+  std::string echo_action;
+  std::string errors;
+  std::string output;
+  std::string activity;
+  std::string blocked_by;
+  bool robot_holds_tool = false;
+  std::string arm_position;
+  bool controller_online = false;
+  std::uint32_t result_run_id = 0;
+  bool result_ok = false;
+  std::string result_reasons;
+  std::uint32_t result_counter = 0;
+  bool status_fresh = false;
+  std::uint32_t status_age_ms = 0;
+  std::string controller_alarms;
+  std::string selected_program;
+  float torque_nm = 0;
+};
+struct LiftView {
+  bool seen = false;
+  bool fresh_msg = false;
+  std::string errors;
+  std::string at;
+  std::string target;
+  bool drive_online = false;
+  bool fault = false;
+  float position_mm = 0;
+  std::uint32_t reading_age_ms = 0;
+  bool moving = false;
+  bool enabled = false;
+  float speed_mm_s = 0;
+  std::string fault_text;
+};
+struct View {
+  ToolView tool;
+  LiftView lift;
+};
+
+inline ToolView view_of(const SmartToolState& s) {
+  return ToolView{true,
+                  s.fresh_msg,
+                  text(s.echo.action),
+                  joined(s.error_list),
+                  text(s.output),
+                  text(s.activity),
+                  text(s.blocked_by),
+                  s.robot_holds_tool,
+                  text(s.arm_position),
+                  s.controller_online,
+                  s.last_result.run_id,
+                  s.last_result.ok,
+                  text(s.last_result.nok_reasons),
+                  s.last_result.run_counter,
+                  s.status_fresh,
+                  s.status_age_ms,
+                  text(s.controller_alarms),
+                  text(s.selected_program),
+                  s.torque_nm};
+}
+inline LiftView view_of(const LiftState& s) {
+  return LiftView{true,           s.fresh_msg,  joined(s.error_list), text(s.at),       text(s.target),
+                  s.drive_online, s.fault,      s.position_mm,        s.reading_age_ms, s.moving,
+                  s.enabled,      s.speed_mm_s, text(s.fault_text)};
+}
+
+// The planner's side of one layout: send both nodes their commands, take States.
+class Link {
+ public:
+  virtual ~Link() = default;
+  virtual void send(const ToolOrder& tool, const LiftOrder& lift) = 0;
+  // Takes what arrived into `view`; true when something did.
+  virtual bool take(View& view) = 0;
+  virtual bool wait_for_hub(Duration patience) = 0;
+};
+
+template <class T>
+struct Endpoint {
+  static Endpoint create(const dds::Participant& participant, const std::string& topic_name) {
+    auto topic = dds::Topic<T>::create(participant, topic_name);
+    EXPECT_TRUE(topic) << topic.error().message;
+    return Endpoint{std::move(*topic)};
+  }
+  dds::Topic<T> topic;
+};
+
+// Node-type layout: /smart_tool/command, /lift/command; /tool_ecu/tool/state, /tool_ecu/lift/state.
+class NodeTypeLink final : public Link {
+ public:
+  explicit NodeTypeLink(const dds::Participant& p)
+      : tool_command_(Endpoint<SmartToolCommand>::create(p, "/smart_tool/command")),
+        lift_command_(Endpoint<LiftCommand>::create(p, "/lift/command")),
+        tool_state_(Endpoint<SmartToolState>::create(p, "/tool_ecu/tool/state")),
+        lift_state_(Endpoint<LiftState>::create(p, "/tool_ecu/lift/state")),
+        tool_writer_(*dds::Writer<SmartToolCommand>::create(p, tool_command_.topic)),
+        lift_writer_(*dds::Writer<LiftCommand>::create(p, lift_command_.topic)),
+        tool_reader_(*dds::Reader<SmartToolState>::create(p, tool_state_.topic)),
+        lift_reader_(*dds::Reader<LiftState>::create(p, lift_state_.topic)) {}
+
+  void send(const ToolOrder& tool, const LiftOrder& lift) override {
+    const std::string tool_type = "smart_tool", tool_name = "tool", lift_type = "lift", lift_name = "lift";
+    SmartToolCommand t{wire(tool_type), wire(tool_name), wire(tool.action), tool.run_id, wire(tool.program)};
+    LiftCommand l{wire(lift_type), wire(lift_name), wire(lift.action), wire(lift.position)};
+    EXPECT_TRUE(tool_writer_.write(t).is_ok());
+    EXPECT_TRUE(lift_writer_.write(l).is_ok());
+  }
+  bool take(View& view) override {
+    bool any = false;
+    while (true) {
+      const Result<bool> taken = tool_reader_.take_next(tool_sample_);
+      if (!taken.is_ok() || !taken.value()) break;
+      view.tool = view_of(tool_sample_.get());
+      any = true;
+    }
+    while (true) {
+      const Result<bool> taken = lift_reader_.take_next(lift_sample_);
+      if (!taken.is_ok() || !taken.value()) break;
+      view.lift = view_of(lift_sample_.get());
+      any = true;
+    }
+    return any;
+  }
+  bool wait_for_hub(Duration patience) override {
+    return tool_reader_.wait_for_writers(1, patience) && lift_reader_.wait_for_writers(1, patience) &&
+           tool_writer_.wait_for_readers(1, patience) && lift_writer_.wait_for_readers(1, patience);
+  }
+
+ private:
+  Endpoint<SmartToolCommand> tool_command_;
+  Endpoint<LiftCommand> lift_command_;
+  Endpoint<SmartToolState> tool_state_;
+  Endpoint<LiftState> lift_state_;
+  dds::Writer<SmartToolCommand> tool_writer_;
+  dds::Writer<LiftCommand> lift_writer_;
+  dds::Reader<SmartToolState> tool_reader_;
+  dds::Reader<LiftState> lift_reader_;
+  dds::Sample<SmartToolState> tool_sample_;
+  dds::Sample<LiftState> lift_sample_;
+};
+
+// Hub layout: /tool_ecu/command and /tool_ecu/state, one field per node.
+class HubLink final : public Link {
+ public:
+  explicit HubLink(const dds::Participant& p)
+      : command_(Endpoint<ToolEcuCommand>::create(p, "/tool_ecu/command")),
+        state_(Endpoint<ToolEcuState>::create(p, "/tool_ecu/state")),
+        writer_(*dds::Writer<ToolEcuCommand>::create(p, command_.topic)),
+        reader_(*dds::Reader<ToolEcuState>::create(p, state_.topic)) {}
+
+  void send(const ToolOrder& tool, const LiftOrder& lift) override {
+    const std::string hub_type = "tool_ecu", hub_name = "tool_ecu", apply = "apply", empty;
+    ToolEcuCommand command{};
+    command.target_type = wire(hub_type);
+    command.target_name = wire(hub_name);
+    command.action = wire(apply);
+    // Empty target fields address each fragment to the node of its field.
+    command.tool =
+        SmartToolCommand{wire(empty), wire(empty), wire(tool.action), tool.run_id, wire(tool.program)};
+    command.lift = LiftCommand{wire(empty), wire(empty), wire(lift.action), wire(lift.position)};
+    EXPECT_TRUE(writer_.write(command).is_ok());
+  }
+  bool take(View& view) override {
+    bool any = false;
+    while (true) {
+      const Result<bool> taken = reader_.take_next(sample_);
+      if (!taken.is_ok() || !taken.value()) break;
+      const ToolEcuState& s = sample_.get();
+      EXPECT_STREQ(s.tool.name, "tool");
+      EXPECT_STREQ(s.lift.name, "lift");
+      view.tool = view_of(s.tool);
+      view.lift = view_of(s.lift);
+      hub_errors_ = joined(s.error_list);
+      any = true;
+    }
+    return any;
+  }
+  bool wait_for_hub(Duration patience) override {
+    return reader_.wait_for_writers(1, patience) && writer_.wait_for_readers(1, patience);
+  }
+
+ private:
+  Endpoint<ToolEcuCommand> command_;
+  Endpoint<ToolEcuState> state_;
+  dds::Writer<ToolEcuCommand> writer_;
+  dds::Reader<ToolEcuState> reader_;
+  dds::Sample<ToolEcuState> sample_;
+  std::string hub_errors_;
+};
+
+enum class Layout { kNodeType, kHub };
+
+class HubdToolTest : public ::testing::TestWithParam<Layout> {
+ protected:
+  void SetUp() override {
+    auto domain = test_support::TestDomain::acquire();
+    ASSERT_TRUE(domain) << domain.error().message;
+    domain_.emplace(std::move(*domain));
+    auto participant = dds::Participant::create(domain_->config(), "test-planner");
+    ASSERT_TRUE(participant) << participant.error().message;
+    participant_.emplace(std::move(*participant));
+    if (GetParam() == Layout::kHub) {
+      link_ = std::make_unique<HubLink>(*participant_);
+    } else {
+      link_ = std::make_unique<NodeTypeLink>(*participant_);
+    }
+    rsp_topic_.emplace(*dds::Topic<RspState>::create(*participant_, "/rsp_ecu/rsp/state"));
+    rsp_writer_.emplace(*dds::Writer<RspState>::create(*participant_, *rsp_topic_));
+    sim_input_topic_.emplace(
+        *dds::Topic<hub_msgs_msg_dds__SimInput_>::create(*participant_, sim::kSimInputTopic));
+    sim_input_writer_.emplace(
+        *dds::Writer<hub_msgs_msg_dds__SimInput_>::create(*participant_, *sim_input_topic_));
+    sim_fault_topic_.emplace(
+        *dds::Topic<hub_msgs_msg_dds__SimFault_>::create(*participant_, sim::kSimFaultTopic));
+    sim_fault_writer_.emplace(
+        *dds::Writer<hub_msgs_msg_dds__SimFault_>::create(*participant_, *sim_fault_topic_));
+  }
+
+  void TearDown() override {
+    running_ = false;
+    if (planner_.joinable()) planner_.join();
+    if (rsp_.joinable()) rsp_.join();
+    if (!hub_file_dir_.empty()) std::filesystem::remove_all(hub_file_dir_);
+  }
+
+  // The shipped hub file, or (hub layout) a copy of it with `layout: hub`.
+  std::string hub_argument() {
+    if (GetParam() == Layout::kNodeType) return "tool_ecu";
+    std::ifstream in(std::string(HUBRT_SOURCE_DIR) + "/hubs/tool_ecu/tool_ecu.yaml");
+    std::stringstream yaml;
+    yaml << in.rdbuf();
+    std::string content = yaml.str();
+    const std::string from = "layout: node_type";
+    const auto at = content.find(from);
+    EXPECT_NE(at, std::string::npos);
+    content.replace(at, from.size(), "layout: hub");
+    hub_file_dir_ = (std::filesystem::temp_directory_path() /
+                     fmt::format("hubrt-tool-test-{}-{}", getpid(), domain_->domain_id()))
+                        .string();
+    std::filesystem::create_directories(hub_file_dir_);
+    const std::string path = hub_file_dir_ + "/tool_ecu.yaml";
+    std::ofstream(path) << content;
+    return path;
+  }
+
+  // Starts hubd, the planner (commands every 100 ms) and the stand-in RSP ECU (State every 100 ms).
+  void start() {
+    HubProcessOptions options;
+    options.hub = hub_argument();
+    auto hub = HubProcess::start(*domain_, options);
+    ASSERT_TRUE(hub) << hub.error().message;
+    hub_.emplace(std::move(*hub));
+    ASSERT_TRUE(link_->wait_for_hub(kPatience)) << hub_->output();
+    ASSERT_TRUE(sim_input_writer_->wait_for_readers(1, kPatience));
+    ASSERT_TRUE(sim_fault_writer_->wait_for_readers(1, kPatience));
+    ASSERT_TRUE(rsp_writer_->wait_for_readers(1, kPatience)) << "the Tool ECU subscribes to the RSP State";
+    planner_ = std::thread([this] {
+      while (running_) {
+        {
+          const std::lock_guard lock(mutex_);
+          if (planning_) link_->send(tool_order_, lift_order_);
+        }
+        std::this_thread::sleep_for(milliseconds(100));
+      }
+    });
+    rsp_ = std::thread([this] {
+      const std::string name = "rsp";
+      while (running_) {
+        {
+          const std::lock_guard lock(mutex_);
+          if (rsp_alive_) {
+            RspState state{};
+            state.name = wire(name);
+            state.tool = wire(robot_tool_);
+            state.locked = robot_tool_ != "none";
+            EXPECT_TRUE(rsp_writer_->write(state).is_ok());
+          }
+        }
+        std::this_thread::sleep_for(milliseconds(100));
+      }
+    });
+  }
+
+  void order(ToolOrder tool, std::optional<LiftOrder> lift = std::nullopt) {
+    const std::lock_guard lock(mutex_);
+    tool_order_ = std::move(tool);
+    if (lift) lift_order_ = std::move(*lift);
+    planning_ = true;
+  }
+  void order_lift(LiftOrder lift) {
+    const std::lock_guard lock(mutex_);
+    lift_order_ = std::move(lift);
+    planning_ = true;
+  }
+  void planner_goes_quiet() {
+    const std::lock_guard lock(mutex_);
+    planning_ = false;
+  }
+  void robot_holds(std::string tool) {
+    const std::lock_guard lock(mutex_);
+    robot_tool_ = std::move(tool);
+  }
+  void rsp_alive(bool alive) {
+    const std::lock_guard lock(mutex_);
+    rsp_alive_ = alive;
+  }
+
+  void sim_input(const std::string& signal, bool active) {
+    const std::string hub = "tool_ecu";
+    hub_msgs_msg_dds__SimInput_ input{wire(hub), wire(signal), active};
+    ASSERT_TRUE(sim_input_writer_->write(input).is_ok());
+  }
+  void sim_fault(const std::string& device, const std::string& fault) {
+    const std::string hub = "tool_ecu";
+    hub_msgs_msg_dds__SimFault_ message{wire(hub), wire(device), wire(fault), 0};
+    ASSERT_TRUE(sim_fault_writer_->write(message).is_ok());
+  }
+
+  // Takes States until `predicate` holds for the latest View; false after `timeout`.
+  bool wait_for(const std::function<bool(const View&)>& predicate, Duration timeout = kPatience) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (link_->take(view_) && view_.tool.seen && view_.lift.seen && predicate(view_)) return true;
+      std::this_thread::sleep_for(milliseconds(5));
+    }
+    return false;
+  }
+  std::string describe() const {
+    return fmt::format(
+        "tool: output={} activity={} blocked_by='{}' result={}/{}/'{}' errors='{}'; lift: at='{}' "
+        "errors='{}'\nhubd:\n{}",
+        view_.tool.output, view_.tool.activity, view_.tool.blocked_by, view_.tool.result_run_id,
+        view_.tool.result_ok, view_.tool.result_reasons, view_.tool.errors, view_.lift.at, view_.lift.errors,
+        hub_ ? hub_->output() : "");
+  }
+  // The arm leaves home (the simulation board starts it there) and the robot holds the tool.
+  void make_ready() {
+    sim_input("tool.arm.home", false);
+    robot_holds("smart_tool");
+    ASSERT_TRUE(wait_for([](const View& v) {
+      return v.tool.arm_position == "operating" && v.tool.robot_holds_tool && v.tool.controller_online;
+    })) << describe();
+  }
+
+  std::optional<test_support::TestDomain> domain_;
+  std::optional<dds::Participant> participant_;
+  std::unique_ptr<Link> link_;
+  std::optional<dds::Topic<RspState>> rsp_topic_;
+  std::optional<dds::Writer<RspState>> rsp_writer_;
+  std::optional<dds::Topic<hub_msgs_msg_dds__SimInput_>> sim_input_topic_;
+  std::optional<dds::Writer<hub_msgs_msg_dds__SimInput_>> sim_input_writer_;
+  std::optional<dds::Topic<hub_msgs_msg_dds__SimFault_>> sim_fault_topic_;
+  std::optional<dds::Writer<hub_msgs_msg_dds__SimFault_>> sim_fault_writer_;
+  std::optional<HubProcess> hub_;
+  std::string hub_file_dir_;
+  View view_;
+
+  std::mutex mutex_;  // guards the orders and the RSP stand-in's State
+  ToolOrder tool_order_;
+  LiftOrder lift_order_;
+  bool planning_ = false;
+  std::string robot_tool_ = "none";
+  bool rsp_alive_ = true;
+  std::atomic<bool> running_{true};
+  std::thread planner_;
+  std::thread rsp_;
+};
+}  // namespace hubrt::integration::tool_test
