@@ -145,6 +145,19 @@ TEST_F(YamlMapFiles, MissingFilesAndDanglingLinksDoNotExist) {
                                                   link.string(), missing.string()));
 }
 
+TEST_F(YamlMapFiles, AFileLargerThanAnyConfigurationIsRefusedUnread) {
+  const auto path = dir_ / "huge.yaml";
+  {
+    std::ofstream out(path);
+    const std::string line = "# " + std::string(1022, 'x') + "\n";
+    for (int i = 0; i < 1100; ++i) out << line;  // 1.1 MiB of comments: valid YAML, but no config
+  }
+  auto loaded = YamlMap::load_file(path.string());
+  ASSERT_FALSE(loaded) << "a 1.1 MiB file was read as a configuration";
+  EXPECT_EQ(loaded.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(loaded.error().message, path.string() + ": larger than 1048576 bytes: not a configuration file");
+}
+
 TEST_F(YamlMapFiles, AFileWithInvalidUtf8IsRefused) {
   const auto path = dir_ / "hub.yaml";
   std::ofstream(path) << "hub: dock_ecu\n# comment\nname: \xC0\xAF\n";

@@ -20,8 +20,8 @@ class YamlMap {
  public:
   // Parses a file whose top level must be a mapping. Errors name the file (and the line for syntax
   // errors). The file must be a regular file (require_regular_file: kNotFound when it does not
-  // exist; a directory or a symbolic link loop says so), and the document must pass the checks
-  // of load_string.
+  // exist; a directory or a symbolic link loop says so) of at most 1 MiB (kInvalidArgument,
+  // unread beyond that), and the document must pass the checks of load_string.
   static Expected<YamlMap> load_file(const std::string& path);
   // Same, for text already in memory; `name` stands in for the file name in messages. Refused
   // (kInvalidArgument, located at file:line:column): text that is not strict UTF-8 (RFC 3629,
