@@ -1,11 +1,11 @@
 // The strict UTF-8 corpus: what RFC 3629 allows and, one by one, the ill-formed sequences it
 // forbids (the classes of Markus Kuhn's UTF-8 decoder stress test).
-#include "hubrt/base/utf8.h"
-
 #include <cctype>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "hubrt/base/utf8.h"
 
 namespace hubrt {
 namespace {

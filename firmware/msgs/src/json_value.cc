@@ -166,7 +166,6 @@ std::string describe_json(const Json& value) {
   }
 }
 
-
 Json slot_to_json(const FieldInfo& slot, const void* addr) {
   switch (slot.kind) {
     case FieldKind::kString: {
