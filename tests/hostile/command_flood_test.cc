@@ -141,7 +141,11 @@ TEST(CommandFlood, TwoPlannersFlippingTheCommandStayWithinTheBudgetAndTheHeartbe
   flooding = false;
   writer_a.join();
   writer_b.join();
-  // The last word: one planner settles on "inhibit"; the next States must echo it.
+  // The last word: one planner settles on "inhibit"; the next States must echo it. First every
+  // flood sample must have reached the hub: two writers' samples are not ordered with each other,
+  // and on a loaded machine b's last "idle" could otherwise arrive after a's final word.
+  ASSERT_TRUE(a.writer->untyped().wait_for_acks(seconds(10)));
+  ASSERT_TRUE(b.writer->untyped().wait_for_acks(seconds(10)));
   ASSERT_TRUE(a.send("inhibit"));
   const auto settle_end = std::chrono::steady_clock::now() + seconds(1);
   while (std::chrono::steady_clock::now() < settle_end) {
