@@ -1,11 +1,18 @@
 #include "hubrt/runtime/cycle_runner.h"
 
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <sys/signalfd.h>
 
 namespace hubrt::runtime {
 namespace {
@@ -111,8 +118,38 @@ TEST(CycleRunner, StopsOnSigterm) {
 
 // Every catchable signal that would end the process ends run() instead, so that the caller drives
 // its outputs safe; old runners stopped on SIGINT/SIGTERM only and SIGHUP killed the process.
+// Whether this platform delivers `signal` to a signalfd at all: qemu-user (the cross tier) keeps
+// some real-time signals for itself and silently drops them, which is the emulator's limit, not
+// the runner's. Blocks `signal` in this thread (as CycleRunner::create does anyway).
+bool platform_delivers(int signal) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, signal);
+  if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return false;
+  const int fd = signalfd(-1, &set, SFD_CLOEXEC);
+  if (fd < 0) return false;
+  bool delivered = false;
+  if (kill(getpid(), signal) == 0) {
+    pollfd p{fd, POLLIN, 0};
+    signalfd_siginfo info{};
+    delivered = poll(&p, 1, 2000) == 1 && read(fd, &info, sizeof info) == static_cast<ssize_t>(sizeof info) &&
+                static_cast<int>(info.ssi_signo) == signal;
+  }
+  close(fd);
+  return delivered;
+}
+
 TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
+  const int standard[] = {SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU};
+  std::string not_delivered;
   for (const int signal : {SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGRTMIN, SIGRTMAX}) {
+    if (!platform_delivers(signal)) {
+      // Every platform delivers the standard signals; only real-time ones may be missing.
+      EXPECT_EQ(std::find(std::begin(standard), std::end(standard), signal), std::end(standard))
+          << sigdescr_np(signal) << " is not delivered at all";
+      not_delivered += std::string(" ") + std::to_string(signal);
+      continue;
+    }
     auto runner = CycleRunner::create();
     ASSERT_TRUE(runner);
     Hub hub(HubOptions{"test", "hub", milliseconds(10), nullptr});
@@ -132,6 +169,9 @@ TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
     ASSERT_TRUE(stopped) << sigdescr_np(signal);
     EXPECT_EQ(*stopped, StopReason::kSignal) << sigdescr_np(signal);
     EXPECT_EQ(runner->last_signal(), signal) << sigdescr_np(signal);
+  }
+  if (!not_delivered.empty()) {
+    std::printf("signals this platform does not deliver (not tested):%s\n", not_delivered.c_str());
   }
 }
 
