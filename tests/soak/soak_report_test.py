@@ -9,6 +9,7 @@ import pathlib
 import sys
 import unittest
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import soak_report  # noqa: E402
 
