@@ -2,6 +2,8 @@
 #   make demo        build and run the simulated station with a live view of every State
 #   make test        the default suite: ASan+UBSan build, all tests; TSan build, threaded tests
 #   make bench       benchmarks, results into docs/benchmarks.md (slow; not in the default suite)
+#   make soak        the station under reconnects, floods and faults for SOAK_MINUTES (60), sampled
+#                    into build/host-release/soak/soak.csv and soak.png (docs/soak.md; not in CI)
 #   make fuzz        every libFuzzer harness for FUZZ_SECONDS (60) each, clang build (fuzz/README.md)
 #   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
 #                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
@@ -13,9 +15,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,11p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,13p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench fuzz kernel-test cross-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -49,6 +51,15 @@ bench:
 	@cmake --preset host-release >/dev/null
 	@$(CMAKE_BUILD) host-release -j$(JOBS) --target bench-programs
 	@bench/run --build-dir build/host-release
+
+# The soak tier (docs/soak.md): release build, SOAK_MINUTES of load, non-zero on a crash, growth
+# beyond the stated slopes or a heartbeat beyond its jitter budget. python3-matplotlib draws soak.png.
+SOAK_MINUTES ?= 60
+soak:
+	@toolchain/install-deps --bench
+	@cmake --preset host-release >/dev/null
+	@$(CMAKE_BUILD) host-release -j$(JOBS) --target hubd hubctl hubsim
+	@tests/soak/soak --minutes $(SOAK_MINUTES) --build-dir build/host-release
 
 # libFuzzer harnesses (fuzz/): clang with ASan+UBSan, each harness run on a scratch copy of its
 # seed corpus; non-zero on any crash, whose input stays in build/fuzz/fuzz-artifacts/.

@@ -51,6 +51,15 @@ TEST(LoopbackConfig, PinsLoopbackWithoutMulticastAnd32Participants) {
   EXPECT_NE(xml.find("<Peer address=\"127.0.0.1\"/>"), std::string::npos);
 }
 
+// The receive buffer bounds the saw-tooth of RSS that discovery and commands cause (docs/soak.md:
+// 3 kB per planner reconnect with Cyclone's 1 MiB default, flat with 192 KiB). Every DDS test in
+// the suite creates its participants with this configuration, so Cyclone accepting it is tested
+// there; tests/soak/reconnect-growth measures the effect.
+TEST(LoopbackConfig, BoundsTheReceiveBufferSawTooth) {
+  EXPECT_NE(loopback_config_xml().find("<Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>"),
+            std::string::npos);
+}
+
 // NOLINTEND(concurrency-mt-unsafe)
 
 }  // namespace

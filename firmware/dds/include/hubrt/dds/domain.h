@@ -26,8 +26,9 @@ inline constexpr std::uint32_t kMaxDomainId = 232;
 
 // The configuration that keeps a participant on the loopback interface: interface "lo", no
 // multicast, unicast discovery to 127.0.0.1 with automatic participant indices (up to 32
-// participants on the host; Cyclone's default of 9 caps a unicast host at 10). Valid for any
-// domain id. Used by tests and by single-machine demos. Thread-safe.
+// participants on the host; Cyclone's default of 9 caps a unicast host at 10), and a 192 KiB
+// receive buffer instead of 1 MiB (bounds the RSS saw-tooth of incoming traffic: docs/soak.md).
+// Valid for any domain id. Used by tests and by single-machine demos. Thread-safe.
 std::string loopback_config_xml();
 
 // The environment variable that carries the domain id to hubd and hubctl, as in ROS 2.

@@ -1,0 +1,191 @@
+#!/usr/bin/python3
+"""Judges and draws a soak run's samples (soak.csv, written by tests/soak/soak).
+
+  tests/soak/soak_report.py SOAK_CSV [--minutes N]    re-judge a run, redraw its picture
+
+The thresholds, and why they are what they are (docs/soak.md says the same at more length):
+  - warm-up: the first WARMUP_SHARE of the run (at least 2, at most 10 minutes) is not judged:
+    Cyclone's and malloc's free lists, the discovery tables and the first rounds of every command
+    fill up then, which is growth that stops.
+  - RSS: the growth of its peaks. Cyclone bump-allocates received messages through a receive
+    buffer per receive thread (1 MiB by default) and frees the buffer when it is used up, so RSS
+    is a saw-tooth whose teeth are one buffer high, whatever the uptime (docs/soak.md). A straight
+    line through such samples says nothing; the highest RSS of the second half of the judged
+    samples against the highest of the first half does: equal for a saw-tooth, apart by the leak
+    for a leak. That difference per minute must stay below RSS_SLOPE_KB_MIN: the load brings ~25
+    new participants a minute and continuous commands, so a leak of 1 kB per reconnect shows as
+    ~25 kB/min, and the saw-tooth sampled every 30 s leaves a few kB/min of noise.
+    The least-squares slope is printed too, for the record.
+  - threads and fds: after the warm-up never above their value at the end of the warm-up + a
+    small allowance (THREADS_ALLOWANCE, FDS_ALLOWANCE): Cyclone's thread and socket count per
+    participant is fixed, so any climb is a leak of the hub's own.
+  - heartbeat: every sampling window of every process: no State sequence gap, the longest period
+    at most twice the nominal period (the conformance suite's jitter_max_pct of 100 %: beyond it a
+    planner would call the hub silent), the rate no lower than RATE_TOLERANCE below nominal (a hub
+    also sends an immediate State when a command changes something, so more is not a miss).
+  - no process exited (checked by the driver, and shown here as rows that say "exited").
+"""
+import csv
+import dataclasses
+import sys
+
+COLUMNS = ["time_s", "process", "pid", "rss_kb", "threads", "fds", "rate_hz", "period_p99_ms",
+           "period_max_ms", "seq_gaps", "note"]
+WARMUP_SHARE = 0.2
+RSS_SLOPE_KB_MIN = 8.0
+THREADS_ALLOWANCE = 0
+FDS_ALLOWANCE = 2
+MAX_PERIOD_FACTOR = 2.0
+RATE_TOLERANCE = 0.10
+
+
+@dataclasses.dataclass
+class Verdict:
+    ok: bool = True
+    lines: list = dataclasses.field(default_factory=list)
+
+    def fail(self, text):
+        self.ok = False
+        self.lines.append("FAIL " + text)
+
+    def info(self, text):
+        self.lines.append(text)
+
+
+def load(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def by_process(rows):
+    out = {}
+    for row in rows:
+        out.setdefault(row["process"], []).append(row)
+    return out
+
+
+def warmup_minutes(minutes):
+    return min(10.0, max(2.0, minutes * WARMUP_SHARE))
+
+
+def slope_per_minute(points):
+    """Least-squares slope of (seconds, value) points, in value per minute."""
+    n = len(points)
+    if n < 2:
+        return 0.0
+    mean_t = sum(t for t, _ in points) / n
+    mean_v = sum(v for _, v in points) / n
+    var = sum((t - mean_t) ** 2 for t, _ in points)
+    if var == 0:
+        return 0.0
+    return 60.0 * sum((t - mean_t) * (v - mean_v) for t, v in points) / var
+
+
+def peak_growth_per_minute(points):
+    """(peak of the second half - peak of the first half) / minutes between the halves' middles."""
+    half = len(points) // 2
+    first, second = points[:half], points[len(points) - half:]
+    if half < 1:
+        return 0.0
+    minutes = (sum(t for t, _ in second) / half - sum(t for t, _ in first) / half) / 60.0
+    if minutes <= 0:
+        return 0.0
+    return (max(v for _, v in second) - max(v for _, v in first)) / minutes
+
+
+def judge(rows, nominal_hz, minutes):
+    """nominal_hz: process -> its heartbeat's nominal rate. Returns a Verdict."""
+    verdict = Verdict()
+    warm_s = warmup_minutes(minutes) * 60
+    verdict.info(f"judged after a {warm_s / 60:g}-minute warm-up; RSS peak growth limit {RSS_SLOPE_KB_MIN:g} kB/min")
+    for name, samples in sorted(by_process(rows).items()):
+        if any(s["note"].startswith("exited") for s in samples):
+            verdict.fail(f"{name} {next(s['note'] for s in samples if s['note'])}")
+            continue
+        judged = [s for s in samples if float(s["time_s"]) >= warm_s]
+        if len(judged) < 3:
+            verdict.fail(f"{name}: only {len(judged)} samples after the warm-up; run longer")
+            continue
+        rss = [(float(s["time_s"]), float(s["rss_kb"])) for s in judged]
+        slope = slope_per_minute(rss)
+        growth = peak_growth_per_minute(rss)
+        text = (f"{name}: RSS {rss[0][1]:.0f} -> {rss[-1][1]:.0f} kB (peak {max(v for _, v in rss):.0f}), peak "
+                f"growth {growth:+.2f} kB/min, least-squares slope {slope:+.2f} kB/min; threads "
+                f"{judged[0]['threads']}..{max(int(s['threads']) for s in judged)}, fds "
+                f"{judged[0]['fds']}..{max(int(s['fds']) for s in judged)}")
+        if growth >= RSS_SLOPE_KB_MIN:
+            verdict.fail(text + f" (RSS grows faster than {RSS_SLOPE_KB_MIN:g} kB/min)")
+        else:
+            verdict.info(text)
+        for key, allowance in (("threads", THREADS_ALLOWANCE), ("fds", FDS_ALLOWANCE)):
+            base = int(judged[0][key])
+            peak = max(int(s[key]) for s in judged)
+            if peak > base + allowance:
+                verdict.fail(f"{name}: {key} climbed from {base} to {peak} after the warm-up")
+        nominal = nominal_hz.get(name)
+        if nominal is None:
+            continue
+        budget_ms = MAX_PERIOD_FACTOR * 1000.0 / nominal
+        worst = max(float(s["period_max_ms"]) for s in samples)
+        gaps = sum(int(s["seq_gaps"] or 0) for s in samples)
+        verdict.info(f"{name}: heartbeat {nominal:g} Hz, longest period {worst:.1f} ms (budget "
+                     f"{budget_ms:.0f} ms), {gaps} sequence gaps")
+        for s in samples:
+            rate = float(s["rate_hz"])
+            when = f"{name} at {float(s['time_s']) / 60:.1f} min"
+            if rate < (1 - RATE_TOLERANCE) * nominal:
+                verdict.fail(f"{when}: State rate {rate:.2f} Hz, nominal {nominal:g} Hz")
+            if float(s["period_max_ms"]) > budget_ms:
+                verdict.fail(f"{when}: a State period of {float(s['period_max_ms']):.1f} ms (budget {budget_ms:.0f})")
+            if int(s["seq_gaps"] or 0) > 0:
+                verdict.fail(f"{when}: {s['seq_gaps']} States missing (sequence gaps)")
+    return verdict
+
+
+def draw(rows, path):
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print(f"soak: no picture ({path}): python3-matplotlib is missing (toolchain/install-deps --bench)")
+        return
+    fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True)
+    for name, samples in sorted(by_process(rows).items()):
+        alive = [s for s in samples if s["rss_kb"]]
+        t = [float(s["time_s"]) / 60 for s in alive]
+        axes[0].plot(t, [float(s["rss_kb"]) / 1024 for s in alive], marker=".", label=name)
+        axes[1].plot(t, [int(s["threads"]) for s in alive], marker=".", label=name)
+        axes[2].plot(t, [int(s["fds"]) for s in alive], marker=".", label=name)
+        axes[3].plot(t, [float(s["period_max_ms"]) for s in alive], marker=".", label=name)
+    for ax, label in zip(axes, ["RSS (MiB)", "threads", "open fds", "longest State period (ms)"]):
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="upper left", fontsize="small")
+    axes[-1].set_xlabel("minutes")
+    fig.suptitle("hubrt soak: the simulated station under reconnects, floods and faults")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main(argv):
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("csv")
+    parser.add_argument("--minutes", type=float, default=None, help="run length (default: from the samples)")
+    args = parser.parse_args(argv)
+    rows = load(args.csv)
+    minutes = args.minutes or max(float(r["time_s"]) for r in rows) / 60
+    nominal = {"tool_ecu": 10.0, "rsp_ecu": 10.0, "dock_ecu": 10.0, "hubsim": 50.0}
+    verdict = judge(rows, nominal, minutes)
+    for line in verdict.lines:
+        print(line)
+    draw(rows, args.csv.rsplit(".", 1)[0] + ".png")
+    return 0 if verdict.ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
