@@ -1,8 +1,6 @@
 #include "hub_process.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -37,15 +35,6 @@ Expected<Finished> run_hubd(const test_support::TestDomain& domain, const std::v
   auto status = child->wait(timeout);
   if (!status) return std::move(status).error();
   return Finished{*status, child->stdout_text() + child->stderr_text()};
-}
-
-std::vector<std::string> target_emulator() {
-  std::vector<std::string> words;
-  const char* value =
-      std::getenv("HUBRT_TARGET_EMULATOR");  // NOLINT(concurrency-mt-unsafe): no setenv in tests
-  std::istringstream in(value == nullptr ? "" : value);
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
 }
 
 }  // namespace hubrt::integration

@@ -43,8 +43,4 @@ struct Finished {
 Expected<Finished> run_hubd(const test_support::TestDomain& domain, const std::vector<std::string>& args,
                             Duration timeout, const test_support::Environment& extra_env = {});
 
-// HUBRT_TARGET_EMULATOR split into words: the cross tier runs the target's programs under
-// qemu-user (slow, and a host program such as unshare cannot exec them by itself); empty natively.
-std::vector<std::string> target_emulator();
-
 }  // namespace hubrt::integration

@@ -66,7 +66,7 @@ TEST_F(HubdCheckTest, PassesWithNoNetworkAtAll) {
   }
   for (const std::string hub : {"tool_ecu", "rsp_ecu", "dock_ecu"}) {
     std::vector<std::string> args{"-n"};
-    for (const std::string& word : target_emulator()) args.push_back(word);
+    for (const std::string& word : test_support::target_emulator()) args.push_back(word);
     for (const std::string arg : {HUBRT_HUBD_PATH, "--board", "host-sim", "--hub", hub.c_str(), "--check"}) {
       args.push_back(arg);
     }
@@ -81,7 +81,7 @@ TEST_F(HubdCheckTest, PassesWithNoNetworkAtAll) {
 // `initial` level (on the RSP board that energises the gripper valve), looked for GPIO chips by
 // label (scanning /dev), opened CAN and Modbus, joined DDS (AF_INET, AF_NETLINK sockets).
 TEST_F(HubdCheckTest, OpensNoDeviceAndNoSocketOnARealBoard) {
-  if (!target_emulator().empty()) {
+  if (!test_support::target_emulator().empty()) {
     GTEST_SKIP() << "hubd runs under an emulator here (HUBRT_TARGET_EMULATOR): strace would trace the "
                     "emulator's own calls; the default suite runs this check natively";
   }

@@ -258,7 +258,7 @@ TEST_P(HubdTwinTest, ALaterTwinIsReportedByBothAndTheLaterOneGoesSafeAndExits) {
       std::string::npos)
       << second.output;
 
-  if (!target_emulator().empty()) {
+  if (!test_support::target_emulator().empty()) {
     // Under qemu-user the later hub can find the first, go safe and exit before the first hub's
     // own discovery has seen its writer at all; then only the later one reports (asserted above).
     GTEST_SKIP() << "the first hub's report is not checked under an emulator (HUBRT_TARGET_EMULATOR)";

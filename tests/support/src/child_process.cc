@@ -111,17 +111,6 @@ std::optional<std::uint16_t> own_machine() {
   return machine;
 }
 
-// HUBRT_TARGET_EMULATOR split into words; empty when unset (native builds).
-std::vector<std::string> target_emulator() {
-  std::vector<std::string> words;
-  // NOLINTNEXTLINE(concurrency-mt-unsafe): tests do not change the environment while spawning
-  const char* value = std::getenv("HUBRT_TARGET_EMULATOR");
-  if (value == nullptr) return words;
-  std::istringstream in(value);
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
-}
-
 // `name` looked up in PATH as execvp would: the first executable match, or empty.
 std::string find_in_path(const std::string& name) {
   // NOLINTNEXTLINE(concurrency-mt-unsafe): see target_emulator()
@@ -142,6 +131,16 @@ ExitStatus to_exit_status(int wait_status) {
 }
 
 }  // namespace
+
+std::vector<std::string> target_emulator() {
+  std::vector<std::string> words;
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): tests do not change the environment while spawning
+  const char* value = std::getenv("HUBRT_TARGET_EMULATOR");
+  if (value == nullptr) return words;
+  std::istringstream in(value);
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
 
 std::string ExitStatus::describe() const {
   if (exit_code) return "exit code " + std::to_string(*exit_code);

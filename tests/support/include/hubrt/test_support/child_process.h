@@ -88,4 +88,9 @@ class ChildProcess {
   std::string dir_;
 };
 
+// HUBRT_TARGET_EMULATOR split into words: the cross tier runs the target's programs under
+// qemu-user (slow, and a host program such as unshare cannot exec them by itself); empty in
+// native builds. ChildProcess::start puts these words in front of target programs itself.
+std::vector<std::string> target_emulator();
+
 }  // namespace hubrt::test_support
