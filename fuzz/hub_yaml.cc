@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "hubrt/assembly/hub_type.h"
+#include "hubrt/assembly/hub_types.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/config/yaml_map.h"
 #include "hubrt/hal/board/board_requirements.h"
@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!root) return 0;
   auto config = hubrt::config::parse_hub_config(*root);
   if (!config) return 0;
-  const hubrt::assembly::HubType* type = hubrt::assembly::find_hub_type(config->type);
+  const hubrt::hub_api::HubType* type = hubrt::assembly::find_hub_type(config->type);
   if (type == nullptr) return 0;
   auto required = type->requirements(*config);
   if (!required) return 0;

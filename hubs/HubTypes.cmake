@@ -1,5 +1,5 @@
 # hubrt_register_hub_type(TARGET <lib> HEADER <header> FUNCTION <qualified function>)
-#   Records a hub type: <lib> provides `const hubrt::assembly::HubType& <function>() noexcept`,
+#   Records a hub type: <lib> provides `const hubrt::hub_api::HubType& <function>() noexcept`,
 #   declared in <header>.
 # hubrt_add_hub_type_registry(<target>)
 #   Generates the library defining hubrt::assembly::hub_types() over every recorded hub type.
@@ -32,17 +32,18 @@ function(hubrt_add_hub_type_registry target)
 #include <array>
 #include <string_view>
 
+#include \"hubrt/assembly/hub_types.h\"
 ${includes}
 namespace hubrt::assembly {
 
-std::span<const HubType* const> hub_types() noexcept {
-  static const auto types = std::to_array<const HubType*>({
+std::span<const hub_api::HubType* const> hub_types() noexcept {
+  static const auto types = std::to_array<const hub_api::HubType*>({
 ${entries}  });
   return types;
 }
 
-const HubType* find_hub_type(std::string_view name) noexcept {
-  for (const HubType* type : hub_types()) {
+const hub_api::HubType* find_hub_type(std::string_view name) noexcept {
+  for (const hub_api::HubType* type : hub_types()) {
     if (type->name() == name) return type;
   }
   return nullptr;
@@ -51,5 +52,8 @@ const HubType* find_hub_type(std::string_view name) noexcept {
 }  // namespace hubrt::assembly
 ")
   add_library(${target} STATIC ${source})
+  # The declaration of hub_types() is the composition root's (hubrt/assembly/hub_types.h); the
+  # registry needs only that header, not the library (which itself uses the registry).
+  target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/firmware/assembly/include)
   target_link_libraries(${target} PUBLIC ${targets})
 endfunction()

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hubrt/assembly/hub_layout.h"
+#include "hubrt/hub_api/hub_layout.h"
 
 #include "node_harness.h"
 #include "station_files.h"
@@ -25,13 +25,13 @@ class HubLayoutUnderFuzz {
   // Adds node `name` (a field of the hub-level types) running `logic`, as NodeWiring::add does.
   template <runtime::NodeLogic Logic>
   void add(const std::string& name, Logic logic) {
-    auto command_offset = assembly::detail::struct_field_offset(
+    auto command_offset = hub_api::detail::struct_field_offset(
         msgs::type_info_of<HubCommand>(), name, msgs::type_info_of<typename Logic::Command>(), "fuzz");
     if (!command_offset) setup_failed(command_offset.error().message);
-    auto state_offset = assembly::detail::struct_field_offset(
+    auto state_offset = hub_api::detail::struct_field_offset(
         msgs::type_info_of<HubState>(), name, msgs::type_info_of<typename Logic::State>(), "fuzz");
     if (!state_offset) setup_failed(state_offset.error().message);
-    auto route = std::make_unique<assembly::detail::NodeRoute<Logic>>(*command_offset, *state_offset, name);
+    auto route = std::make_unique<hub_api::detail::NodeRoute<Logic>>(*command_offset, *state_offset, name);
     auto node = std::make_unique<runtime::Node<Logic>>(options(name), std::move(logic), route->source(),
                                                        route->sink(), ops_of<typename Logic::Command>());
     route->attach(*node);
@@ -45,8 +45,8 @@ class HubLayoutUnderFuzz {
     HubCommand command{};
     if (!decoder.decode(input, &command)) return;
     {
-      runtime::Node<assembly::detail::HubLevelLogic<HubTypes>> hub_node(
-          options(hub_name), assembly::detail::HubLevelLogic<HubTypes>(routes_), source_, sink_,
+      runtime::Node<hub_api::detail::HubLevelLogic<HubTypes>> hub_node(
+          options(hub_name), hub_api::detail::HubLevelLogic<HubTypes>(routes_), source_, sink_,
           ops_of<HubCommand>());
       hub_node.logic().watch(hub_node.tracker());
       source_.post(&command);
@@ -73,7 +73,7 @@ class HubLayoutUnderFuzz {
     return options;
   }
 
-  std::vector<std::unique_ptr<assembly::detail::Route>> routes_;
+  std::vector<std::unique_ptr<hub_api::detail::Route>> routes_;
   std::vector<std::unique_ptr<runtime::NodeBase>> nodes_;
   OneShotSource<HubCommand> source_;
   DiscardingSink<HubState> sink_;

@@ -48,7 +48,7 @@ inline std::shared_ptr<spdlog::logger> quiet_logger() {
   return logger;
 }
 
-// The MessageOps of a generated type (as hubrt::assembly::message_ops does for hubs).
+// The MessageOps of a generated type (as hubrt::hub_api::message_ops does for hubs).
 template <class T>
 const runtime::MessageOps& ops_of() {
   static const runtime::ReflectedMessageOps ops(msgs::type_info_of<T>());

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/topic_names.h"
+#include "hubrt/hub_api/topic_names.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -27,7 +27,8 @@ Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(
     const dds::Participant& participant, const runtime::Hub& hub, std::string hardware_id, Duration interval,
     Duration command_timeout, Duration immediate_state_interval,
     const std::atomic<std::uint64_t>* log_lines_dropped) {
-  auto topic = dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, kDiagnosticsTopic);
+  auto topic =
+      dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, hub_api::kDiagnosticsTopic);
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();

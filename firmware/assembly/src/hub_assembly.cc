@@ -7,12 +7,13 @@
 #include <spdlog/spdlog.h>
 
 #include "hubrt/assembly/diagnostics_stage.h"
-#include "hubrt/assembly/hub_type.h"
-#include "hubrt/assembly/subscriptions.h"
+#include "hubrt/assembly/hub_types.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/hal/linux/backend.h"
+#include "hubrt/hub_api/hub_type.h"
+#include "hubrt/hub_api/subscriptions.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
 namespace hubrt::assembly {
@@ -20,7 +21,7 @@ namespace {
 
 std::string known_hub_types() {
   std::vector<std::string_view> names;
-  for (const HubType* type : hub_types()) names.push_back(type->name());
+  for (const hub_api::HubType* type : hub_types()) names.push_back(type->name());
   return fmt::format("{}", fmt::join(names, ", "));
 }
 
@@ -59,7 +60,7 @@ Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
   out.config = std::move(*config);
   if (auto ok = apply_overrides(request, out.config); !ok) return std::move(ok).error();
 
-  const HubType* type = find_hub_type(out.config.type);
+  const hub_api::HubType* type = find_hub_type(out.config.type);
   if (type == nullptr) {
     return make_error(ErrorCode::kNotFound, fmt::format("{}: unknown hub type '{}' (this hubd knows: {})",
                                                         out.config.file, out.config.type, known_hub_types()));
@@ -84,7 +85,7 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   if (!checked) return std::move(checked).error();
   out->board = std::move(checked->board);
   out->config = std::move(checked->config);
-  const HubType* type = find_hub_type(out->config.type);
+  const hub_api::HubType* type = find_hub_type(out->config.type);
 
   // The start stamp decides which of two twins is the later one (twin_rules.h).
   const std::int64_t started_ns = clock.now().wall.ns_since_epoch;
@@ -120,9 +121,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   options.period = out->config.period;
   options.log = log;
   out->hub = std::make_unique<runtime::Hub>(std::move(options));
-  out->subscriptions = std::make_unique<Subscriptions>(out->config, *out->participant);
-  const HubContext context{out->config,   out->board, *out->backend, *out->participant,
-                           request.waker, log,        clock,         *out->subscriptions};
+  out->subscriptions = std::make_unique<hub_api::Subscriptions>(out->config, *out->participant);
+  const hub_api::HubContext context{out->config,   out->board, *out->backend, *out->participant,
+                                    request.waker, log,        clock,         *out->subscriptions};
   if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();
   // Other hubs' States are taken before the nodes step, so the logic sees this cycle's.
   if (auto stage = out->subscriptions->make_stage()) out->hub->add_first_stage(std::move(stage));

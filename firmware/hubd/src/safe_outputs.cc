@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "hubrt/assembly/hub_type.h"
+#include "hubrt/assembly/hub_types.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/fake/fake_backend.h"
@@ -56,7 +56,7 @@ void log_untouched(const hal::BoardRequirements& required, spdlog::logger& log) 
 
 Expected<hal::BoardRequirements> hub_requirements(const hal::BoardConfig& board,
                                                   const config::HubConfig& hub) {
-  const assembly::HubType* type = assembly::find_hub_type(hub.type);
+  const hub_api::HubType* type = assembly::find_hub_type(hub.type);
   if (type == nullptr) {
     return make_error(ErrorCode::kNotFound, fmt::format("{}: unknown hub type '{}'", hub.file, hub.type));
   }

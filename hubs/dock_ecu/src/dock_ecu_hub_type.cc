@@ -2,14 +2,14 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/hub_layout.h"
+#include "hubrt/hub_api/hub_layout.h"
 
 #include "dock_logic.h"
 
 namespace hubrt::dock_ecu {
 namespace {
 
-class DockEcuHubType final : public assembly::HubType {
+class DockEcuHubType final : public hub_api::HubType {
  public:
   [[nodiscard]] std::string_view name() const noexcept override { return "dock_ecu"; }
 
@@ -32,14 +32,14 @@ class DockEcuHubType final : public assembly::HubType {
 
   [[nodiscard]] Expected<void> check(const config::HubConfig& config) const override {
     for (const config::NodeConfig& node : config.nodes) {
-      auto wired = assembly::NodeWiring<DockEcuTypes>::check<DockLogic>(config, node);
+      auto wired = hub_api::NodeWiring<DockEcuTypes>::check<DockLogic>(config, node);
       if (!wired) return wired;
     }
     return {};
   }
 
-  [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
-    auto wiring = assembly::NodeWiring<DockEcuTypes>::create(context, hub);
+  [[nodiscard]] Expected<void> build(const hub_api::HubContext& context, runtime::Hub& hub) const override {
+    auto wiring = hub_api::NodeWiring<DockEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();
     const Time now = context.clock.now().mono;
     for (const config::NodeConfig& node : context.config.nodes) {
@@ -56,7 +56,7 @@ class DockEcuHubType final : public assembly::HubType {
 
 }  // namespace
 
-const assembly::HubType& dock_ecu_hub_type() noexcept {
+const hub_api::HubType& dock_ecu_hub_type() noexcept {
   static const DockEcuHubType type;
   return type;
 }

@@ -1,8 +1,8 @@
 // The Dock ECU hub type: nodes of type "dock", one presence sensor per slot.
 #pragma once
 
-#include "hubrt/assembly/hub_type.h"
+#include "hubrt/hub_api/hub_type.h"
 
 namespace hubrt::dock_ecu {
-const assembly::HubType& dock_ecu_hub_type() noexcept;
+const hub_api::HubType& dock_ecu_hub_type() noexcept;
 }  // namespace hubrt::dock_ecu

@@ -2,15 +2,15 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/hub_layout.h"
-#include "hubrt/assembly/subscriptions.h"
+#include "hubrt/hub_api/hub_layout.h"
+#include "hubrt/hub_api/subscriptions.h"
 
 #include "rsp_logic.h"
 
 namespace hubrt::rsp_ecu {
 namespace {
 
-class RspEcuHubType final : public assembly::HubType {
+class RspEcuHubType final : public hub_api::HubType {
  public:
   [[nodiscard]] std::string_view name() const noexcept override { return "rsp_ecu"; }
 
@@ -45,16 +45,16 @@ class RspEcuHubType final : public assembly::HubType {
     for (const config::NodeConfig& node : config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock = assembly::Subscriptions::check<dock_ecu::DockState>(config, settings->dock_subscription);
+      auto dock = hub_api::Subscriptions::check<dock_ecu::DockState>(config, settings->dock_subscription);
       if (!dock) return dock;
-      auto wired = assembly::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
+      auto wired = hub_api::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
       if (!wired) return wired;
     }
     return {};
   }
 
-  [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
-    auto wiring = assembly::NodeWiring<RspEcuTypes>::create(context, hub);
+  [[nodiscard]] Expected<void> build(const hub_api::HubContext& context, runtime::Hub& hub) const override {
+    auto wiring = hub_api::NodeWiring<RspEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();
     const Time now = context.clock.now().mono;
     for (const config::NodeConfig& node : context.config.nodes) {
@@ -75,7 +75,7 @@ class RspEcuHubType final : public assembly::HubType {
 
 }  // namespace
 
-const assembly::HubType& rsp_ecu_hub_type() noexcept {
+const hub_api::HubType& rsp_ecu_hub_type() noexcept {
   static const RspEcuHubType type;
   return type;
 }

@@ -2,8 +2,8 @@
 // gripper confirms, pressure switch), each watching the Dock ECU's State through a subscription.
 #pragma once
 
-#include "hubrt/assembly/hub_type.h"
+#include "hubrt/hub_api/hub_type.h"
 
 namespace hubrt::rsp_ecu {
-const assembly::HubType& rsp_ecu_hub_type() noexcept;
+const hub_api::HubType& rsp_ecu_hub_type() noexcept;
 }  // namespace hubrt::rsp_ecu

@@ -19,9 +19,9 @@
 #include <array>
 #include <vector>
 
-#include "hubrt/assembly/remote_state.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/board/board_config.h"
+#include "hubrt/hub_api/remote_state.h"
 #include "hubrt/hubs/reopening_input.h"
 #include "hubrt/runtime/node.h"
 
@@ -35,7 +35,7 @@
 
 namespace hubrt::rsp_ecu {
 
-using DockInput = assembly::RemoteState<dock_ecu::DockState>;
+using DockInput = hub_api::RemoteState<dock_ecu::DockState>;
 
 class RspLogic {
  public:

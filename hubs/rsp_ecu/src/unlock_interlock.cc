@@ -17,7 +17,7 @@ const hub_msgs_msg_dds__DockSlot_* find_slot(const dock_ecu::DockState& dock,
 }  // namespace
 
 bool unlock_permitted(const ToolId& tool, std::string_view tool_name,
-                      const assembly::RemoteState<dock_ecu::DockState>& dock_input, Time now,
+                      const hub_api::RemoteState<dock_ecu::DockState>& dock_input, Time now,
                       runtime::Problem& why) noexcept {
   if (tool.kind == ToolId::Kind::kUndefined) {
     why.assign("tool id undefined: cannot tell which tool the changer would release");

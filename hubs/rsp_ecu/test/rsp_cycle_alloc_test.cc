@@ -5,10 +5,10 @@
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "hubrt/assembly/node_wiring.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
+#include "hubrt/hub_api/node_wiring.h"
 #include "hubrt/runtime/node.h"
 
 #include "alloc_counter.h"
@@ -52,7 +52,7 @@ TEST(RspCycle, AllocatesNothingInSteadyState) {
   runtime::NodeOptions options;
   options.name = "rsp";
   options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
-  runtime::Node<RspLogic> node(options, std::move(*logic), source, sink, assembly::message_ops<RspCommand>());
+  runtime::Node<RspLogic> node(options, std::move(*logic), source, sink, hub_api::message_ops<RspCommand>());
 
   // Every command queued up front (the queue allocates); the smart tool is not home, so every
   // unlock is refused. The Dock ECU goes quiet after cycle 300.

@@ -5,10 +5,10 @@
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "hubrt/assembly/node_wiring.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
+#include "hubrt/hub_api/node_wiring.h"
 #include "hubrt/runtime/node.h"
 
 #include "rsp_logic.h"
@@ -45,7 +45,7 @@ class RspNodeTest : public ::testing::Test {
     options.command_timeout = milliseconds(1000);
     options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
     node_ = std::make_unique<runtime::Node<RspLogic>>(options, std::move(*logic), source_, sink_,
-                                                      assembly::message_ops<RspCommand>());
+                                                      hub_api::message_ops<RspCommand>());
   }
 
   // One cycle: the dock's State (if it is alive) arrives, then `c` (if given), then the node steps.

@@ -10,7 +10,7 @@
 
 #include <dds/dds.h>
 
-#include "hubrt/assembly/remote_state.h"
+#include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/ports.h"
 
 #include "dock_messages.h"
@@ -75,7 +75,7 @@ class DockFeed {
   explicit DockFeed(Duration timeout)
       : input_("dock", "/dock_ecu/dock/state", timeout, hub_msgs_msg_dds__DockState__desc, 0) {}
 
-  assembly::RemoteState<dock_ecu::DockState>& input() noexcept { return input_; }
+  hub_api::RemoteState<dock_ecu::DockState>& input() noexcept { return input_; }
 
   // A State listing `slots` (name, occupied) arrives at `now`. Strings and buffers are allocated
   // the way Cyclone does when taking, since the RemoteState's sample frees them so.
@@ -98,7 +98,7 @@ class DockFeed {
   }
 
  private:
-  assembly::RemoteState<dock_ecu::DockState> input_;
+  hub_api::RemoteState<dock_ecu::DockState> input_;
 };
 
 // The dock as host-sim.yaml starts it, with the smart tool's slot as given.

@@ -5,8 +5,8 @@
 
 #include <string_view>
 
-#include "hubrt/assembly/remote_state.h"
 #include "hubrt/base/time.h"
+#include "hubrt/hub_api/remote_state.h"
 
 #include "rsp.h"
 #include "rsp_reflect.h"
@@ -34,7 +34,7 @@ class RspToolHolder final : public ToolHolderView {
   static constexpr std::string_view kSmartTool = "smart_tool";
 
   // `rsp` must outlive this object (the hub's Subscriptions own it).
-  explicit RspToolHolder(assembly::RemoteState<hub_msgs_msg_dds__RspState_>& rsp) : rsp_(&rsp) {}
+  explicit RspToolHolder(hub_api::RemoteState<hub_msgs_msg_dds__RspState_>& rsp) : rsp_(&rsp) {}
 
   HolderReading read(Time now) noexcept override {
     const hub_msgs_msg_dds__RspState_* state = rsp_->fresh(now);
@@ -44,7 +44,7 @@ class RspToolHolder final : public ToolHolderView {
   }
 
  private:
-  assembly::RemoteState<hub_msgs_msg_dds__RspState_>* rsp_;
+  hub_api::RemoteState<hub_msgs_msg_dds__RspState_>* rsp_;
 };
 
 }  // namespace hubrt::tool_ecu

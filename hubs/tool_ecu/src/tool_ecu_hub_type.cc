@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/hub_layout.h"
-#include "hubrt/assembly/subscriptions.h"
+#include "hubrt/hub_api/hub_layout.h"
+#include "hubrt/hub_api/subscriptions.h"
 
 #include "lift_logic.h"
 #include "smart_tool_logic.h"
@@ -17,7 +17,7 @@ Error in_node(const config::NodeConfig& node, const Error& error) {
   return make_error(error.code, fmt::format("node '{}': {}", node.name, error.message));
 }
 
-class ToolEcuHubType final : public assembly::HubType {
+class ToolEcuHubType final : public hub_api::HubType {
  public:
   [[nodiscard]] std::string_view name() const noexcept override { return "tool_ecu"; }
 
@@ -60,19 +60,19 @@ class ToolEcuHubType final : public assembly::HubType {
       if (node.type == SmartToolLogic::kType) {
         auto settings = parse_smart_tool_settings(node);
         if (!settings) return std::move(settings).error();
-        auto rsp = assembly::Subscriptions::check<hub_msgs_msg_dds__RspState_>(config, settings->robot_state);
+        auto rsp = hub_api::Subscriptions::check<hub_msgs_msg_dds__RspState_>(config, settings->robot_state);
         if (!rsp) return in_node(node, rsp.error());
-        wired = assembly::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
+        wired = hub_api::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
       } else {
-        wired = assembly::NodeWiring<ToolEcuTypes>::check<LiftLogic>(config, node);
+        wired = hub_api::NodeWiring<ToolEcuTypes>::check<LiftLogic>(config, node);
       }
       if (!wired) return wired;
     }
     return {};
   }
 
-  [[nodiscard]] Expected<void> build(const assembly::HubContext& context, runtime::Hub& hub) const override {
-    auto wiring = assembly::NodeWiring<ToolEcuTypes>::create(context, hub);
+  [[nodiscard]] Expected<void> build(const hub_api::HubContext& context, runtime::Hub& hub) const override {
+    auto wiring = hub_api::NodeWiring<ToolEcuTypes>::create(context, hub);
     if (!wiring) return std::move(wiring).error();
     const Time now = context.clock.now().mono;
     for (const config::NodeConfig& node : context.config.nodes) {
@@ -88,8 +88,8 @@ class ToolEcuHubType final : public assembly::HubType {
   }
 
  private:
-  static Expected<void> add_smart_tool(const assembly::HubContext& context, const config::NodeConfig& node,
-                                       assembly::NodeWiring<ToolEcuTypes>& wiring, Time now) {
+  static Expected<void> add_smart_tool(const hub_api::HubContext& context, const config::NodeConfig& node,
+                                       hub_api::NodeWiring<ToolEcuTypes>& wiring, Time now) {
     auto settings = parse_smart_tool_settings(node);
     if (!settings) return std::move(settings).error();
     auto rsp = context.subscriptions.get<hub_msgs_msg_dds__RspState_>(settings->robot_state);
@@ -100,8 +100,8 @@ class ToolEcuHubType final : public assembly::HubType {
     return wiring.add(node, std::move(*logic));
   }
 
-  static Expected<void> add_lift(const assembly::HubContext& context, const config::NodeConfig& node,
-                                 assembly::NodeWiring<ToolEcuTypes>& wiring) {
+  static Expected<void> add_lift(const hub_api::HubContext& context, const config::NodeConfig& node,
+                                 hub_api::NodeWiring<ToolEcuTypes>& wiring) {
     auto settings = parse_lift_settings(node);
     if (!settings) return std::move(settings).error();
     auto logic = LiftLogic::create(*settings, context.board, context.backend, context.clock, context.log);
@@ -112,7 +112,7 @@ class ToolEcuHubType final : public assembly::HubType {
 
 }  // namespace
 
-const assembly::HubType& tool_ecu_hub_type() noexcept {
+const hub_api::HubType& tool_ecu_hub_type() noexcept {
   static const ToolEcuHubType type;
   return type;
 }

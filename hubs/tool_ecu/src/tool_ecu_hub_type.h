@@ -3,8 +3,8 @@
 // system on a Modbus drive).
 #pragma once
 
-#include "hubrt/assembly/hub_type.h"
+#include "hubrt/hub_api/hub_type.h"
 
 namespace hubrt::tool_ecu {
-const assembly::HubType& tool_ecu_hub_type() noexcept;
+const hub_api::HubType& tool_ecu_hub_type() noexcept;
 }  // namespace hubrt::tool_ecu

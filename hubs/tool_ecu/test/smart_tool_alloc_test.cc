@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 #include <spdlog/spdlog.h>
 
-#include "hubrt/assembly/node_wiring.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
+#include "hubrt/hub_api/node_wiring.h"
 
 #include "alloc_counter.h"
 #include "smart_tool_logic.h"
@@ -56,8 +56,8 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   ASSERT_TRUE(settings) << settings.error().message;
   auto fake = hal::fake::FakeBackend::create(*board, clock);
   ASSERT_TRUE(fake) << fake.error().message;
-  assembly::RemoteState<RspState> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                      hub_msgs_msg_dds__RspState__desc, 0};
+  hub_api::RemoteState<RspState> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                     hub_msgs_msg_dds__RspState__desc, 0};
   static_cast<RspState*>(rsp.sample_data())->tool = dds_string_dup("smart_tool");
   auto logic = SmartToolLogic::create(*settings, *board, **fake, std::make_unique<RspToolHolder>(rsp),
                                       clock.now().mono);
@@ -67,7 +67,7 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   runtime::NodeOptions options;
   options.name = "tool";
   runtime::Node<SmartToolLogic> node(options, std::move(*logic), source, sink,
-                                     assembly::message_ops<SmartToolCommand>());
+                                     hub_api::message_ops<SmartToolCommand>());
   hal::fake::SmartToolSimulator* tool = (*fake)->smart_tool("tool_bus");
   (*fake)->input("tool.arm.home")->set(false);
 

@@ -187,8 +187,8 @@ TEST_F(SmartToolLogicTest, ALostRspStateCountsAsNotAllowed) {
 }
 
 TEST_F(SmartToolLogicTest, ANeverReceivedRspStateCountsAsNotAllowed) {
-  assembly::RemoteState<RspState> silent{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                         hub_msgs_msg_dds__RspState__desc, 0};
+  hub_api::RemoteState<RspState> silent{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                        hub_msgs_msg_dds__RspState__desc, 0};
   logic_.reset();  // its lines and bus go first: a line is opened by one owner at a time
   auto logic = SmartToolLogic::create(settings_, board_, *fake_, std::make_unique<RspToolHolder>(silent),
                                       clock_.now().mono);

@@ -169,8 +169,8 @@ class SmartToolLogicTest : public ::testing::Test {
   LineChanges line_changes_;
   std::unique_ptr<FakeBackend> fake_;
   hal::fake::SmartToolSimulator* tool_ = nullptr;
-  assembly::RemoteState<RspState> rsp_{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                       hub_msgs_msg_dds__RspState__desc, 0};
+  hub_api::RemoteState<RspState> rsp_{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                      hub_msgs_msg_dds__RspState__desc, 0};
   bool rsp_alive_ = true;
   std::optional<SmartToolLogic> logic_;
   SmartToolCommand command_{};

@@ -10,7 +10,6 @@
 
 #include <spdlog/logger.h>
 
-#include "hubrt/assembly/subscriptions.h"
 #include "hubrt/assembly/twin_watch.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
@@ -19,6 +18,7 @@
 #include "hubrt/dds/participant.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/board/board_config.h"
+#include "hubrt/hub_api/subscriptions.h"
 #include "hubrt/runtime/cycle_runner.h"
 #include "hubrt/runtime/hub.h"
 
@@ -72,8 +72,8 @@ struct AssembledHub {
   std::unique_ptr<hal::Backend> backend;
   hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
   std::optional<dds::Participant> participant;
-  std::unique_ptr<TwinWatch> twin_watch;         // when request.twin_check: uses the participant
-  std::unique_ptr<Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
+  std::unique_ptr<TwinWatch> twin_watch;                  // when request.twin_check: uses the participant
+  std::unique_ptr<hub_api::Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
   std::unique_ptr<runtime::Hub> hub;
   const TwinStage* twins = nullptr;  // owned by the hub; says whether the hub yielded to a twin
 };

@@ -13,7 +13,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/runtime/text_buffer.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 // The type-independent part, filled by SubscriptionStage on the cycle thread.
 class RemoteStateBase {
@@ -71,4 +71,4 @@ class RemoteState final : public RemoteStateBase {
   }
 };
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

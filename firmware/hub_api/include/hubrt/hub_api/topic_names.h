@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 std::string node_command_topic(std::string_view ros_namespace, std::string_view node_type);
 std::string node_state_topic(std::string_view ros_namespace, std::string_view hub, std::string_view node);
@@ -16,4 +16,4 @@ std::string hub_command_topic(std::string_view ros_namespace, std::string_view h
 std::string hub_state_topic(std::string_view ros_namespace, std::string_view hub);
 inline constexpr std::string_view kDiagnosticsTopic = "/diagnostics";
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

@@ -1,8 +1,8 @@
-#include "hubrt/assembly/topic_names.h"
+#include "hubrt/hub_api/topic_names.h"
 
 #include <fmt/format.h>
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 std::string node_command_topic(std::string_view ros_namespace, std::string_view node_type) {
   return fmt::format("{}/{}/command", ros_namespace, node_type);
@@ -20,4 +20,4 @@ std::string hub_state_topic(std::string_view ros_namespace, std::string_view hub
   return fmt::format("{}/{}/state", ros_namespace, hub);
 }
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

@@ -1,6 +1,6 @@
-#include "hubrt/assembly/remote_state.h"
+#include "hubrt/hub_api/remote_state.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 std::string_view RemoteStateBase::loss_reason(Time now) noexcept {
   if (received_ == 0) {
@@ -14,4 +14,4 @@ std::string_view RemoteStateBase::loss_reason(Time now) noexcept {
   return reason_.view();
 }
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

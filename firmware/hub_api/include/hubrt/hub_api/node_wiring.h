@@ -6,15 +6,15 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/dds_ports.h"
-#include "hubrt/assembly/hub_type.h"
-#include "hubrt/assembly/topic_names.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/hub_api/dds_ports.h"
+#include "hubrt/hub_api/hub_type.h"
+#include "hubrt/hub_api/topic_names.h"
 #include "hubrt/msgs/type_info.h"
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/reflected_message_ops.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 // Holds a node's DDS entities. Members are destroyed in reverse order: reader and writer go
 // before the topics they use.
@@ -73,4 +73,4 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   return {};
 }
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

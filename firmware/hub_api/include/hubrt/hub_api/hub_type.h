@@ -1,6 +1,7 @@
-// A hub type (a folder under hubs/) tells the assembly what it needs from a board and how to
-// build its nodes. hubd finds hub types by name in hub_types(); adding a hub type is adding a
-// folder and one line to hubs/CMakeLists.txt, not touching hubd.
+// The interface a hub type implements (a folder under hubs/): what it needs from a board and how
+// to build its nodes. The composition root (firmware/assembly) finds hub types by name in
+// assembly::hub_types(); adding a hub type is adding a folder and one line to
+// hubs/CMakeLists.txt, not touching hubd (docs/new-hub.md).
 #pragma once
 
 #include <memory>
@@ -19,7 +20,7 @@
 #include "hubrt/runtime/cycle_runner.h"
 #include "hubrt/runtime/hub.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 class Subscriptions;
 
@@ -53,9 +54,4 @@ class HubType {
   [[nodiscard]] virtual Expected<void> build(const HubContext& context, runtime::Hub& hub) const = 0;
 };
 
-// Every hub type built into this program (defined by the hubs/ folder).
-std::span<const HubType* const> hub_types() noexcept;
-// The hub type called `name`, or nullptr.
-const HubType* find_hub_type(std::string_view name) noexcept;
-
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

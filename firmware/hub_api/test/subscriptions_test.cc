@@ -1,4 +1,4 @@
-#include "hubrt/assembly/subscriptions.h"
+#include "hubrt/hub_api/subscriptions.h"
 
 #include <thread>
 
@@ -9,7 +9,7 @@
 
 #include "dock_messages.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 namespace {
 
 using dock_ecu::DockState;
@@ -103,4 +103,4 @@ TEST_F(SubscriptionsTest, WrongOrMissingConfigurationIsRefusedWithTheFile) {
 }
 
 }  // namespace
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

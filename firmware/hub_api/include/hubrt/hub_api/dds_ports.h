@@ -10,7 +10,7 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/runtime/ports.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 // Thread-safety: next() on the cycle thread only.
 template <dds::TopicType Command>
@@ -42,4 +42,4 @@ class DdsStateSink final : public runtime::StateSink<State> {
   dds::Writer<State> writer_;
 };
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

@@ -1,6 +1,6 @@
-#include "hubrt/assembly/hub_layout.h"
+#include "hubrt/hub_api/hub_layout.h"
 
-namespace hubrt::assembly::detail {
+namespace hubrt::hub_api::detail {
 
 Expected<std::size_t> struct_field_offset(const msgs::TypeInfo& outer, std::string_view name,
                                           const msgs::TypeInfo& inner, std::string_view hub_file) {
@@ -26,4 +26,4 @@ Expected<std::size_t> struct_field_offset(const msgs::TypeInfo& outer, std::stri
                   hub_file, outer.ros_name, name, fields));
 }
 
-}  // namespace hubrt::assembly::detail
+}  // namespace hubrt::hub_api::detail

@@ -9,16 +9,16 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/remote_state.h"
 #include "hubrt/base/status.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/hub_api/remote_state.h"
 #include "hubrt/msgs/type_info.h"
 #include "hubrt/runtime/hub.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 class Subscriptions {
  public:
@@ -78,4 +78,4 @@ class Subscriptions {
   std::vector<std::unique_ptr<Entry>> entries_;  // heap-held: the stage points into them
 };
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

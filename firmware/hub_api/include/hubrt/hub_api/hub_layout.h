@@ -21,14 +21,14 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/assembly/dds_ports.h"
-#include "hubrt/assembly/hub_type.h"
-#include "hubrt/assembly/node_wiring.h"
-#include "hubrt/assembly/topic_names.h"
+#include "hubrt/hub_api/dds_ports.h"
+#include "hubrt/hub_api/hub_type.h"
+#include "hubrt/hub_api/node_wiring.h"
+#include "hubrt/hub_api/topic_names.h"
 #include "hubrt/msgs/type_info.h"
 #include "hubrt/runtime/node.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 
 // Hands one fragment per step to a node.
 template <class Command>
@@ -290,4 +290,4 @@ class NodeWiring {
   std::unique_ptr<detail::HubLayoutStage<HubTypes>> stage_;
 };
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api

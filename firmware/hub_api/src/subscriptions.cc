@@ -1,8 +1,8 @@
-#include "hubrt/assembly/subscriptions.h"
+#include "hubrt/hub_api/subscriptions.h"
 
 #include "hubrt/msgs/all_types.h"
 
-namespace hubrt::assembly {
+namespace hubrt::hub_api {
 namespace {
 
 class SubscriptionStage final : public runtime::CycleStage {
@@ -90,4 +90,4 @@ std::unique_ptr<runtime::CycleStage> Subscriptions::make_stage() {
   return std::make_unique<SubscriptionStage>(std::move(sources));
 }
 
-}  // namespace hubrt::assembly
+}  // namespace hubrt::hub_api
