@@ -1,5 +1,5 @@
-// Modbus without blocking the caller: node logic submits a request (a batch of one read and one
-// write) and polls for its completion in a later cycle, passing the time in each call. A Modbus
+// Modbus without blocking the caller: node logic submits a request (a batch: a write, then a
+// read) and polls for its completion in a later cycle, passing the time in each call. A Modbus
 // call blocks for up to its response timeout; the blocking calls run somewhere else (e.g. a worker
 // thread in the HAL: threaded_async_modbus.h), so logic that uses this interface has no thread of
 // its own and reads no clock — every time in a completion is one the caller passed in.
@@ -38,9 +38,9 @@ struct ModbusBatch {
 };
 
 // How a request ended. Times are in the caller's time base: `submitted_at` is the `now` given to
-// submit(), `completed_at` the `now` of the poll() that reported it. A value read during the
-// request is at most `completed_at - submitted_at` old at completed_at and never younger than
-// `now - completed_at`; judging it by `submitted_at` (as the lift does) is the safe side.
+// submit(), `completed_at` the `now` of the poll() that reported it. A value was read somewhere
+// between the two; judging its age from `submitted_at` (as the lift does) never makes it look
+// younger than it is.
 struct ModbusCompletion {
   std::uint64_t id = 0;  // what submit() returned
   Time submitted_at{};
