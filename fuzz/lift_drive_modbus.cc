@@ -1,10 +1,10 @@
-// What the lift drive answers over Modbus, through the hub's side: LiftDriveWorker's decoding of
+// What the lift drive answers over Modbus, through the hub's side: LiftDriveLink's decoding of
 // the input registers (position, status word, fault code, signed speed) and its control-word
-// rules, and LiftLogic acting on them — in lockstep, one worker round per cycle of the node.
+// rules, and LiftLogic acting on them — one request answered per cycle of the node, no thread.
 //
-// Input: 11-byte records, one round and one cycle each:
+// Input: 11-byte records, one answer and one cycle each:
 //   byte 0     the read's outcome: 0 ok, 1 timeout, 2 exception (kProtocol), 3 unavailable, 4+ ok
-//   byte 1     the write's outcome, same coding
+//   byte 1     the write's outcome (when the request writes), same coding
 //   byte 2     the command this cycle: bits 0-1 action (0 none, 1 move, 2 stop, 3 reset),
 //              bits 2-4 the position index (past the last one: an unknown name), bit 7: 600 ms pass
 //   bytes 3-10 the four input registers, little-endian
@@ -13,7 +13,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <thread>
 
 #include "node_fixtures.h"
 #include "node_harness.h"
@@ -68,6 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                          sink, hubrt::fuzz::ops_of<hubrt::tool_ecu::LiftCommand>());
     Order order;
     order.target = name;
+    node.step(clock.now());  // the node's first cycle sends the first request
     int cycles = 0;
     for (std::size_t at = 0; at + kRecord <= size && cycles < kMaxCycles; at += kRecord, ++cycles) {
       const std::uint8_t* record = data + at;
@@ -78,14 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         round.input_registers[i] = static_cast<std::uint16_t>(record[3 + 2 * i] | (record[4 + 2 * i] << 8));
       }
       clock.advance((record[2] & 0x80) != 0 ? std::chrono::milliseconds(600) : hubrt::fuzz::kCycle);
-      // One worker round on this answer, finished before the cycle reads its snapshot.
-      const std::uint64_t before = node.logic().snapshot().rounds;
-      drive.offer(round);
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-      while (node.logic().snapshot().rounds == before) {
-        if (std::chrono::steady_clock::now() > deadline) hubrt::fuzz::setup_failed("the lift worker stopped");
-        std::this_thread::yield();
-      }
+      drive.offer(round);  // the answer to the request in flight, taken by this cycle
       static constexpr const char* kActions[] = {nullptr, "move", "stop", "reset"};
       if (const char* action = kActions[record[2] & 0x03]; action != nullptr) {
         order.action = action;
@@ -98,7 +91,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       node.step(clock.now());
     }
-    drive.close();  // a worker waiting for an answer gets none, and the node can stop it
   }
   drive.set_lockstep(false);
   return 0;

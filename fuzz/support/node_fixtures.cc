@@ -65,8 +65,8 @@ const tool_ecu::LiftSettings& lift_settings() {
   return settings;
 }
 tool_ecu::LiftLogic make_lift(const tool_ecu::LiftSettings& settings) {
-  return or_die(tool_ecu::LiftLogic::create(settings, host_sim_board(), scripted_backend(fuzz_clock()),
-                                            fuzz_clock(), quiet_logger()));
+  return or_die(tool_ecu::LiftLogic::create(settings, scripted_backend(fuzz_clock()).modbus().open(),
+                                            fuzz_clock().now().mono, quiet_logger()));
 }
 }  // namespace
 

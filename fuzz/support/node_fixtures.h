@@ -27,8 +27,8 @@ rsp_ecu::RspLogic make_rsp_logic();
 tool_ecu::SmartToolLogic make_smart_tool_logic();
 // The drive answers as the scripted backend's Modbus script says (free-running: not at all).
 tool_ecu::LiftLogic make_lift_logic();
-// The same with no pause between the worker's rounds: in lockstep, the worker waits for each
-// answer the harness offers rather than for its poll interval.
+// The same with no least time between two requests: every cycle whose request completed sends
+// the next, so each answer the harness offers goes to one request.
 tool_ecu::LiftLogic make_lift_logic_lockstep();
 
 }  // namespace hubrt::fuzz

@@ -28,84 +28,87 @@ class ScriptedCanBus final : public hal::CanBus {
   CanScript& script_;
 };
 
-class ScriptedModbusClient final : public hal::ModbusClient {
- public:
-  explicit ScriptedModbusClient(ModbusScript& script) : script_(script) {}
-
- private:
-  Status do_read_registers(RegisterKind kind, std::uint16_t /*address*/,
-                           std::span<std::uint16_t> out) noexcept override {
-    if (kind != RegisterKind::kInput) return Status(ErrorCode::kProtocol);
-    return script_.read(out);
-  }
-  Status do_write_registers(std::uint16_t /*address*/,
-                            std::span<const std::uint16_t> /*values*/) noexcept override {
-    return script_.write();
-  }
-  Status do_read_bits(BitKind /*kind*/, std::uint16_t /*address*/,
-                      std::span<bool> /*out*/) noexcept override {
-    return Status(ErrorCode::kProtocol);
-  }
-  Status do_write_coil(std::uint16_t /*address*/, bool /*value*/) noexcept override {
-    return Status(ErrorCode::kProtocol);
-  }
-
-  ModbusScript& script_;
-};
-
 }  // namespace
 
+class ScriptedAsyncModbus final : public hal::AsyncModbus {
+ public:
+  explicit ScriptedAsyncModbus(ModbusScript& script) : script_(script) {}
+
+  Result<std::uint64_t> submit(const hal::ModbusBatch& batch, Time now) noexcept override {
+    if (const Status valid = hal::check_batch(batch); !valid.is_ok()) return valid;
+    batch_ = batch;
+    submitted_at_ = now;
+    in_flight_ = true;
+    return ++last_id_;
+  }
+  bool poll(Time now, hal::ModbusCompletion& out) noexcept override {
+    if (!in_flight_) return false;
+    std::optional<hal::ModbusCompletion> done = script_.answer(batch_);
+    if (!done) return false;
+    in_flight_ = false;
+    out = *done;
+    out.id = last_id_;
+    out.submitted_at = submitted_at_;
+    out.completed_at = now;
+    return true;
+  }
+  Status set_write_on_close(std::uint16_t /*address*/,
+                            std::span<const std::uint16_t> values) noexcept override {
+    return values.size() > hal::kMaxBatchRegisters ? Status(ErrorCode::kInvalidArgument) : Status::ok();
+  }
+  [[nodiscard]] std::string_view description() const noexcept override { return "lift_drive (scripted)"; }
+
+ private:
+  ModbusScript& script_;
+  hal::ModbusBatch batch_;
+  Time submitted_at_{};
+  bool in_flight_ = false;
+  std::uint64_t last_id_ = 0;
+};
+
 void ModbusScript::set_lockstep(bool lockstep) {
-  const std::lock_guard lock(mutex_);
   lockstep_ = lockstep;
-  has_round_ = false;
+  round_.reset();
 }
 
 void ModbusScript::offer(const ModbusRound& round) {
-  {
-    const std::lock_guard lock(mutex_);
-    round_ = round;
-    has_round_ = true;
-  }
-  offered_.notify_all();
+  round_ = round;
 }
 
-void ModbusScript::close() {
-  {
-    const std::lock_guard lock(mutex_);
-    lockstep_ = false;
-    has_round_ = false;
-  }
-  offered_.notify_all();
+std::unique_ptr<hal::AsyncModbus> ModbusScript::open() {
+  return std::make_unique<ScriptedAsyncModbus>(*this);
 }
 
-Status ModbusScript::read(std::span<std::uint16_t> out) {
-  std::unique_lock lock(mutex_);
-  offered_.wait(lock, [&] { return !lockstep_ || has_round_; });
-  if (!has_round_) {
-    pending_write_ = ErrorCode::kTimeout;
-    return Status(lockstep_ ? ErrorCode::kUnavailable : ErrorCode::kTimeout);
+std::optional<hal::ModbusCompletion> ModbusScript::answer(const hal::ModbusBatch& batch) {
+  if (lockstep_ && !round_) return std::nullopt;
+  ModbusRound round;
+  if (round_) {
+    round = *round_;
+  } else {  // free-running: nobody answers
+    round.read = ErrorCode::kTimeout;
+    round.write = ErrorCode::kTimeout;
   }
-  has_round_ = false;
-  pending_write_ = round_.write;
-  if (round_.read != ErrorCode::kOk) return Status(round_.read);
-  for (std::size_t i = 0; i < out.size() && i < round_.input_registers.size(); ++i)
-    out[i] = round_.input_registers[i];
-  return Status::ok();
-}
-
-Status ModbusScript::write() {
-  const std::lock_guard lock(mutex_);
-  return Status(pending_write_);
+  round_.reset();
+  ++completed_;
+  hal::ModbusCompletion done;
+  if (batch.write_count > 0) done.write = Status(round.write);
+  if (batch.read_count > 0) {
+    if (!done.write.is_ok() && done.write.code() != ErrorCode::kProtocol) {
+      done.read = Status(ErrorCode::kFailedPrecondition);
+    } else if (round.read != ErrorCode::kOk) {
+      done.read = Status(round.read);
+    } else {
+      for (std::size_t i = 0; i < batch.read_count && i < round.input_registers.size(); ++i) {
+        done.registers[i] = round.input_registers[i];
+      }
+      done.register_count = batch.read_count;
+    }
+  }
+  return done;
 }
 
 Expected<std::unique_ptr<hal::CanBus>> ScriptedBackend::open_can(const hal::CanConfig& /*config*/) {
   return std::unique_ptr<hal::CanBus>(std::make_unique<ScriptedCanBus>(can_));
-}
-
-Expected<std::unique_ptr<hal::ModbusClient>> ScriptedBackend::open_modbus(
-    const hal::ModbusConfig& /*config*/) {
-  return std::unique_ptr<hal::ModbusClient>(std::make_unique<ScriptedModbusClient>(modbus_));
 }
 
 ScriptedBackend& scripted_backend(const Clock& clock) {

@@ -1,18 +1,19 @@
 // Devices whose answers come from the fuzz input: a CAN bus that receives the frames it is given,
-// and a Modbus client that answers the lift drive's exchanges in lockstep with the harness. They
-// stand where the hub's real device would be, so the hub's own decoding of what a device says is
-// what the fuzzer exercises. A backend hands them out, with GPIO from the fake backend.
+// and an asynchronous Modbus device that answers the lift drive's requests as the harness says.
+// They stand where the hub's real device would be, so the hub's own decoding of what a device says
+// is what the fuzzer exercises. A backend hands out the bus, with GPIO and Modbus clients from the
+// fake backend; the script opens the Modbus device (the hub type would open it from the backend).
 #pragma once
 
 #include <array>
-#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <memory>
-#include <mutex>
+#include <optional>
 
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
+#include "hubrt/hal/async_modbus.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/fake/fake_backend.h"
@@ -27,40 +28,41 @@ struct CanScript {
   ErrorCode send_result = ErrorCode::kOk;
 };
 
-// One round of the lift drive worker: the answer to its read of the input registers and to its
-// write of the holding registers.
+// The answer to one request of the lift: to its write of the holding registers (when it writes)
+// and to its read of the input registers.
 struct ModbusRound {
   ErrorCode read = ErrorCode::kOk;
   std::array<std::uint16_t, 4> input_registers{};
   ErrorCode write = ErrorCode::kOk;
 };
 
-// Hands rounds to the worker thread one at a time. Thread-safe.
+// Answers the requests of the device it opens, one at a time, as AsyncModbus's rules say (a write
+// the drive did not answer is not followed by the read). Single-threaded: the cycle's; no thread
+// anywhere, so a run is deterministic.
 class ModbusScript {
  public:
-  // Lockstep: the next read waits for offer(). Free-running (the default): every read fails at
-  // once with kTimeout, as a drive that does not answer.
+  // Lockstep: the request in flight completes at the next poll after offer(). Free-running (the
+  // default): every request completes at its first poll, unanswered (kTimeout), as a drive that
+  // does not answer.
   void set_lockstep(bool lockstep);
-  // Makes `round` the answer of the next read (replacing one not yet taken).
+  // Makes `round` the answer to the request in flight (replacing one not yet taken).
   void offer(const ModbusRound& round);
-  // Ends lockstep: a waiting read returns kUnavailable, later ones fail at once. Call before
-  // destroying the logic whose worker may be waiting.
-  void close();
-
-  // For the client (the worker thread).
-  Status read(std::span<std::uint16_t> out);
-  Status write();
+  // The device the logic gets; it uses this script, which must outlive it.
+  std::unique_ptr<hal::AsyncModbus> open();
+  // Requests completed so far.
+  [[nodiscard]] std::uint64_t completed() const noexcept { return completed_; }
 
  private:
-  std::mutex mutex_;
-  std::condition_variable offered_;
+  friend class ScriptedAsyncModbus;
+  // The completion of `batch` under the script, or nothing yet (lockstep, no round offered).
+  std::optional<hal::ModbusCompletion> answer(const hal::ModbusBatch& batch);
+
   bool lockstep_ = false;
-  bool has_round_ = false;
-  ModbusRound round_;
-  ErrorCode pending_write_ = ErrorCode::kTimeout;
+  std::optional<ModbusRound> round_;
+  std::uint64_t completed_ = 0;
 };
 
-// GPIO from the fake backend of the board; the CAN bus and Modbus client from the scripts.
+// GPIO and Modbus clients from the fake backend of the board; the CAN bus from the script.
 // Thread-safety: as FakeBackend; the scripts as documented above.
 class ScriptedBackend final : public hal::Backend {
  public:
@@ -73,7 +75,9 @@ class ScriptedBackend final : public hal::Backend {
     return fake_->open_output(config);
   }
   Expected<std::unique_ptr<hal::CanBus>> open_can(const hal::CanConfig& config) override;
-  Expected<std::unique_ptr<hal::ModbusClient>> open_modbus(const hal::ModbusConfig& config) override;
+  Expected<std::unique_ptr<hal::ModbusClient>> open_modbus(const hal::ModbusConfig& config) override {
+    return fake_->open_modbus(config);
+  }
 
   [[nodiscard]] CanScript& can() noexcept { return can_; }
   [[nodiscard]] ModbusScript& modbus() noexcept { return modbus_; }

@@ -1,7 +1,6 @@
 #include "lift_logic.h"
 
 #include <cstdlib>
-#include <variant>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -27,14 +26,6 @@ char* wire(std::string_view literal_or_buffer) noexcept {
 // Within this of a named position (and in position) the lift is "at" it: the drive's own window.
 constexpr int kAtWindowTenthMm = 5;
 
-std::string describe(const hal::ModbusConfig& config) {
-  if (const auto* tcp = std::get_if<hal::ModbusTcpEndpoint>(&config.endpoint)) {
-    return fmt::format("{} (tcp {}:{}, unit {})", config.device, tcp->host, tcp->port, config.unit_id);
-  }
-  const auto& rtu = std::get<hal::ModbusRtuEndpoint>(config.endpoint);
-  return fmt::format("{} (rtu {}, unit {})", config.device, rtu.device, config.unit_id);
-}
-
 }  // namespace
 
 std::string_view fault_name(std::uint16_t code) noexcept {
@@ -53,33 +44,24 @@ std::string_view fault_name(std::uint16_t code) noexcept {
   return "unknown";
 }
 
-Expected<LiftLogic> LiftLogic::create(const LiftSettings& settings, const hal::BoardConfig& board,
-                                      hal::Backend& backend, const Clock& clock,
-                                      std::shared_ptr<spdlog::logger> log) {
-  const hal::BoardModbusDevice* device = board.find_modbus(settings.device);
-  if (device == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("lift: board {} has no Modbus device '{}'", board.file, settings.device));
+Expected<LiftLogic> LiftLogic::create(const LiftSettings& settings, std::unique_ptr<hal::AsyncModbus> drive,
+                                      Time now, std::shared_ptr<spdlog::logger> log) {
+  if (drive == nullptr) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("lift: no drive device for '{}'", settings.device));
   }
-  auto client = backend.open_modbus(device->config);
-  if (!client) {
-    return make_error(client.error().code, fmt::format("lift: {}", client.error().message));
-  }
-  auto worker = std::make_unique<LiftDriveWorker>(std::move(*client), clock, settings.poll_interval,
-                                                  settings.drive_watchdog_ms);
-  return LiftLogic(settings, std::move(worker), describe(device->config), clock.now().mono,
-                   log ? std::move(log) : spdlog::default_logger());
+  return LiftLogic(settings, std::move(drive), now, log ? std::move(log) : spdlog::default_logger());
 }
 
-LiftLogic::LiftLogic(LiftSettings settings, std::unique_ptr<LiftDriveWorker> worker, std::string endpoint,
-                     Time created, std::shared_ptr<spdlog::logger> log)
+LiftLogic::LiftLogic(LiftSettings settings, std::unique_ptr<hal::AsyncModbus> drive, Time created,
+                     std::shared_ptr<spdlog::logger> log)
     : settings_(std::move(settings)),
-      worker_(std::move(worker)),
-      endpoint_(std::move(endpoint)),
+      link_(std::move(drive), settings_.poll_interval, settings_.drive_watchdog_ms),
+      endpoint_(link_.description()),
       created_(created),
+      last_now_(created),
       log_(std::move(log)) {
   intent_.speed_mm_s = settings_.speed_mm_s;
-  worker_->post(intent_);
 }
 
 int LiftLogic::position_index(std::string_view name) const noexcept {
@@ -101,7 +83,9 @@ bool LiftLogic::validate(const Command& command, runtime::Problem& problem) cons
 }
 
 void LiftLogic::read_inputs(Time now) noexcept {
-  snap_ = worker_->snapshot();
+  last_now_ = now;
+  link_.poll(now);
+  snap_ = link_.snapshot();
   online_ = snap_.answered && now - snap_.read_at <= settings_.answer_within;
   const bool was_lost = not_answering_.present();
   const bool was_fault = drive_fault_.present();
@@ -116,7 +100,7 @@ void LiftLogic::read_inputs(Time now) noexcept {
   }
 }
 
-void LiftLogic::update(const Command* in_force, Time /*now*/) noexcept {
+void LiftLogic::update(const Command* in_force, Time now) noexcept {
   target_ = -1;
   LiftIntent intent = intent_;
   intent.mode = LiftIntent::Mode::kStop;
@@ -129,20 +113,21 @@ void LiftLogic::update(const Command* in_force, Time /*now*/) noexcept {
     }
   }
   intent_ = intent;
-  worker_->post(intent_);
+  last_now_ = now;
+  link_.send(intent_, now);
 }
 
 void LiftLogic::reset() noexcept {
   not_answering_.reset();
   drive_fault_.reset();
-  ++intent_.reset_requests;
+  ++intent_.reset_requests;  // sent with this cycle's update()
   intent_.mode = LiftIntent::Mode::kStop;
-  worker_->post(intent_);
 }
 
 void LiftLogic::enter_safe_state() noexcept {
   intent_.mode = LiftIntent::Mode::kStop;
-  worker_->post(intent_);
+  link_.poll(last_now_);  // a request that completed since the cycle no longer holds the stop back
+  link_.send(intent_, last_now_);
 }
 
 void LiftLogic::report_reading(State& state, bool current) const noexcept {
@@ -173,7 +158,7 @@ void LiftLogic::report_reading(State& state, bool current) const noexcept {
 }
 
 void LiftLogic::report_unknown_motion(runtime::ErrorList& errors) const noexcept {
-  // The hub cannot stop a drive it cannot reach (the worker writes only after a successful read),
+  // The hub cannot stop a drive it cannot reach (a write goes out only after a successful read),
   // so "stopped" would be a guess: the drive carries on with its last command until its own
   // communication watchdog trips (docs/protocols/lift-drive-modbus.md, "Watchdog").
   const bool was_moving = (snap_.status_word & ld::status::kMoving) != 0;

@@ -11,6 +11,10 @@
 // State's drive values read "unknown", `moving` false, drive_online false, reading_age_ms its
 // age), and a drive that does not answer is not claimed "stopped": it cannot be told to stop, and
 // runs on until its own communication watchdog stops it.
+//
+// Deterministic: no thread, no clock. The drive's Modbus exchanges go through the AsyncModbus
+// device handed in (a request per cycle at most, its completion taken in a later cycle), and every
+// time the logic judges is one the cycle passed in (lift_drive_link.h).
 #pragma once
 
 #include <array>
@@ -19,13 +23,12 @@
 
 #include <spdlog/logger.h>
 
-#include "hubrt/hal/backend.h"
-#include "hubrt/hal/board/board_config.h"
+#include "hubrt/hal/async_modbus.h"
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/text_buffer.h"
 
 #include "latched_fault.h"
-#include "lift_drive_worker.h"
+#include "lift_drive_link.h"
 #include "tool_messages.h"
 #include "tool_settings.h"
 
@@ -38,13 +41,11 @@ class LiftLogic {
   static constexpr std::string_view kType = "lift";
   static constexpr std::array<std::string_view, 3> kActions{"move", "stop", "reset"};
 
-  // Opens the drive's Modbus client and starts its worker. `clock` stamps the drive's answers;
-  // it must be the clock whose time the cycle passes in, and outlive the logic.
-  // Errors: the device missing from the board (kNotFound), the backend's open_modbus errors
-  // (e.g. an RTU serial device that does not exist), naming the device.
-  static Expected<LiftLogic> create(const LiftSettings& settings, const hal::BoardConfig& board,
-                                    hal::Backend& backend, const Clock& clock,
-                                    std::shared_ptr<spdlog::logger> log = nullptr);
+  // Takes the drive's device (opened by the hub type from the board); `now`: the cycle's time at
+  // creation. Closing the logic closes the device, whose write-on-close is the drive's "stop".
+  // Errors: kInvalidArgument (no device).
+  static Expected<LiftLogic> create(const LiftSettings& settings, std::unique_ptr<hal::AsyncModbus> drive,
+                                    Time now, std::shared_ptr<spdlog::logger> log = nullptr);
 
   LiftLogic(LiftLogic&&) noexcept = default;
   LiftLogic& operator=(LiftLogic&&) noexcept = default;
@@ -56,14 +57,16 @@ class LiftLogic {
   void update(const Command* in_force, Time now) noexcept;
   void reset() noexcept;
   void report(State& state, runtime::ErrorList& errors, Time now) noexcept;
+  // Asks for "stop" at once: a request goes out now unless one is still in flight (then with the
+  // next cycle), stamped with the last time a cycle passed in.
   void enter_safe_state() noexcept;
 
-  // For tests: the worker's latest snapshot (thread-safe).
-  [[nodiscard]] LiftSnapshot snapshot() const noexcept { return worker_->snapshot(); }
+  // For tests: what the drive said last.
+  [[nodiscard]] const LiftSnapshot& snapshot() const noexcept { return link_.snapshot(); }
 
  private:
-  LiftLogic(LiftSettings settings, std::unique_ptr<LiftDriveWorker> worker, std::string endpoint,
-            Time created, std::shared_ptr<spdlog::logger> log);
+  LiftLogic(LiftSettings settings, std::unique_ptr<hal::AsyncModbus> drive, Time created,
+            std::shared_ptr<spdlog::logger> log);
   [[nodiscard]] int position_index(std::string_view name) const noexcept;
   [[nodiscard]] int position_at() const noexcept;
   // The drive's values of this cycle's reading, or "unknown" for all of them when it is stale.
@@ -71,9 +74,10 @@ class LiftLogic {
   void report_unknown_motion(runtime::ErrorList& errors) const noexcept;
 
   LiftSettings settings_;
-  std::unique_ptr<LiftDriveWorker> worker_;
-  std::string endpoint_;  // for messages, e.g. "lift_drive (127.0.0.1:1502, unit 1)"
+  LiftDriveLink link_;
+  std::string endpoint_;  // for messages, e.g. "lift_drive (tcp 127.0.0.1:1502, unit 1)"
   Time created_;
+  Time last_now_;  // the latest time a cycle passed in, for enter_safe_state()
   std::shared_ptr<spdlog::logger> log_;
 
   LiftSnapshot snap_;  // this cycle's copy

@@ -6,6 +6,7 @@
 
 #include "hubrt/hub_api/hub_layout.h"
 #include "hubrt/hub_api/subscriptions.h"
+#include "hubrt/hal/common/threaded_async_modbus.h"
 
 #include "lift_logic.h"
 #include "smart_tool_logic.h"
@@ -104,9 +105,31 @@ class ToolEcuHubType final : public hub_api::HubType {
                                  hub_api::NodeWiring<ToolEcuTypes>& wiring) {
     auto settings = parse_lift_settings(node);
     if (!settings) return std::move(settings).error();
-    auto logic = LiftLogic::create(*settings, context.board, context.backend, context.clock, context.log);
+    auto drive = open_lift_drive(*settings, context.board, context.backend);
+    if (!drive) return in_node(node, drive.error());
+    auto logic = LiftLogic::create(*settings, std::move(*drive), context.clock.now().mono, context.log);
     if (!logic) return in_node(node, logic.error());
     return wiring.add(node, std::move(*logic));
+  }
+
+  // The lift drive's Modbus client from the board, behind the HAL's worker thread: the logic
+  // submits and polls, the blocking calls run there.
+  // Errors: the device missing from the board (kNotFound), the backend's open_modbus errors
+  // (e.g. an RTU serial device that does not exist), naming the device.
+  static Expected<std::unique_ptr<hal::AsyncModbus>> open_lift_drive(const LiftSettings& settings,
+                                                                     const hal::BoardConfig& board,
+                                                                     hal::Backend& backend) {
+    const hal::BoardModbusDevice* device = board.find_modbus(settings.device);
+    if (device == nullptr) {
+      return make_error(ErrorCode::kNotFound,
+                        fmt::format("lift: board {} has no Modbus device '{}'", board.file, settings.device));
+    }
+    auto client = backend.open_modbus(device->config);
+    if (!client) return make_error(client.error().code, fmt::format("lift: {}", client.error().message));
+    auto drive = hal::open_threaded_async_modbus(
+        std::move(*client), hal::batch_request_timeout(device->config), hal::describe_modbus(device->config));
+    if (!drive) return make_error(drive.error().code, fmt::format("lift: {}", drive.error().message));
+    return std::move(*drive);
   }
 };
 

@@ -64,7 +64,7 @@ struct LiftSettings {
   std::uint16_t drive_watchdog_ms = 1000;
   // The drive counts as not answering when no exchange succeeded for this long.
   Duration answer_within = std::chrono::milliseconds(500);
-  // Pause between two exchanges of the Modbus worker.
+  // Least time between two requests to the drive (at most one per cycle; one in flight at a time).
   Duration poll_interval = std::chrono::milliseconds(20);
 };
 

@@ -1,166 +1,23 @@
-// The lift node against the lift-drive simulator behind a real libmodbus TCP server on loopback,
-// through the fake backend's real libmodbus client. The drive and the node's logic run on the
-// manual clock; the Modbus worker is a real thread, so each step waits (real time, with a
-// deadline) until the worker has read the drive at the new manual time.
-#include "lift_logic.h"
-
-#include <chrono>
-#include <functional>
-#include <thread>
+// The lift node's behaviour (lift_logic_fixture.h: the manual clock, a scripted asynchronous
+// Modbus device in front of the drive model). The HAL's threaded implementation against the real
+// libmodbus server is tested in hal/common/test/threaded_async_modbus_test.cc; how the logic meets
+// the asynchronous device in lift_logic_async_test.cc.
+#include <string>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "hubrt/config/hub_config.h"
-#include "hubrt/hal/board/board_loader.h"
-#include "hubrt/hal/fake/fake_backend.h"
-#include "hubrt/protocol/lift_drive_modbus.h"
-
+#include "lift_logic_fixture.h"
 #include "reading_age.h"
 
-namespace hubrt::tool_ecu {
+namespace hubrt::tool_ecu::testing {
 namespace {
-
-namespace ld = protocol::lift_drive;
-using hal::fake::FakeBackend;
-using std::chrono::milliseconds;
-using std::chrono::seconds;
-
-// Real-time patience for the worker thread: generous, for a loaded 2-core machine running
-// sanitizer builds in parallel. The tests check behaviour, not timing.
-constexpr auto kPatience = seconds(20);
-constexpr auto kStep = milliseconds(100);  // manual time per cycle; well inside answer_within (500 ms)
-
-struct Order {
-  std::string action;
-  std::string position;
-  std::string target_name = "lift";
-  std::string target_type = "lift";
-
-  [[nodiscard]] LiftCommand wire() const {
-    LiftCommand command{};
-    command.target_type = const_cast<char*>(target_type.c_str());  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>(target_name.c_str());  // NOLINT
-    command.action = const_cast<char*>(action.c_str());            // NOLINT
-    command.position = const_cast<char*>(position.c_str());        // NOLINT
-    return command;
-  }
-};
-
-Order move(std::string position) {
-  Order order;
-  order.action = "move";
-  order.position = std::move(position);
-  return order;
-}
-Order action(std::string name) {
-  Order order;
-  order.action = std::move(name);
-  return order;
-}
-
-class LiftLogicTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
-    ASSERT_TRUE(board) << board.error().message;
-    board_ = std::move(*board);
-    auto config = config::load_hub_config(std::string(HUBRT_HUBS_DIR) + "/tool_ecu/tool_ecu.yaml");
-    ASSERT_TRUE(config) << config.error().message;
-    for (const auto& node : config->nodes) {
-      if (node.type == LiftLogic::kType) {
-        auto settings = parse_lift_settings(node);
-        ASSERT_TRUE(settings) << settings.error().message;
-        settings_ = std::move(*settings);
-      }
-    }
-    auto fake = FakeBackend::create(board_, clock_);
-    ASSERT_TRUE(fake) << fake.error().message;
-    fake_ = std::move(*fake);
-    drive_ = fake_->lift_drive("lift_drive");
-    server_ = fake_->lift_drive_server("lift_drive");
-    ASSERT_NE(drive_, nullptr);
-    ASSERT_NE(server_, nullptr);
-  }
-  void TearDown() override { logic_.reset(); }  // the worker stops before the server goes
-
-  void start() {
-    auto logic = LiftLogic::create(settings_, board_, *fake_, clock_);
-    ASSERT_TRUE(logic) << logic.error().message;
-    logic_.emplace(std::move(*logic));
-  }
-
-  // Waits (real time) until the worker's snapshot satisfies `done`.
-  bool wait_worker(const std::function<bool(const LiftSnapshot&)>& done, Duration patience = kPatience) {
-    const auto deadline = std::chrono::steady_clock::now() + patience;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done(logic_->snapshot())) return true;
-      std::this_thread::sleep_for(milliseconds(1));
-    }
-    return false;
-  }
-
-  // One cycle at the current manual time, as the Node runs it.
-  void cycle(const Order* order) {
-    const Time now = clock_.now().mono;
-    if (order != nullptr) command_ = order->wire();
-    logic_->read_inputs(now);
-    logic_->update(order == nullptr ? nullptr : &command_, now);
-    errors_.clear();
-    state_ = LiftState{};
-    logic_->report(state_, errors_, now);
-  }
-  // Advances the manual clock one step, lets the worker read the drive at that time (two rounds:
-  // the first may have begun before the advance), then cycles.
-  void step(const Order* order) {
-    clock_.advance(kStep);
-    const Time now = clock_.now().mono;
-    const std::uint64_t rounds = logic_->snapshot().rounds;
-    ASSERT_TRUE(wait_worker([&](const LiftSnapshot& s) {
-      return s.answered && s.read_at >= now && s.rounds >= rounds + 2;
-    })) << "the worker did not read the drive within "
-        << kPatience.count() << " s";
-    cycle(order);
-  }
-  void steps(const Order& order, int n) {
-    for (int i = 0; i < n; ++i) step(&order);
-  }
-  template <class Predicate>
-  bool step_until(const Order* order, Predicate done, int limit = 80) {
-    for (int i = 0; i < limit; ++i) {
-      step(order);
-      if (::testing::Test::HasFatalFailure()) return false;
-      if (done()) return true;
-    }
-    return false;
-  }
-  void reset_command() {
-    logic_->reset();
-    const Order reset = action("reset");
-    step(&reset);
-  }
-  [[nodiscard]] std::string errors() const {
-    std::string out;
-    for (std::size_t i = 0; i < errors_.size(); ++i) out += std::string(errors_.at(i)) + "; ";
-    return out;
-  }
-  [[nodiscard]] std::uint16_t drive_control_word() { return drive_->read(clock_.now().mono).control_word(); }
-
-  ManualClock clock_;
-  hal::BoardConfig board_;
-  LiftSettings settings_;
-  std::unique_ptr<FakeBackend> fake_;
-  hal::fake::LiftDrive* drive_ = nullptr;
-  hal::fake::LiftDriveServer* server_ = nullptr;
-  std::optional<LiftLogic> logic_;
-  LiftCommand command_{};
-  LiftState state_{};
-  runtime::ErrorList errors_;
-};
 
 TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
   start();
   const Order work = move("work");
+  step(&work);  // the first request reads the drive
+  EXPECT_FALSE(state_.drive_online) << "no reading yet";
   step(&work);
   EXPECT_TRUE(state_.drive_online);
   EXPECT_STREQ(state_.target, "work");
@@ -173,7 +30,7 @@ TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
   EXPECT_TRUE(state_.in_position);
   EXPECT_FALSE(state_.moving);
   EXPECT_NEAR(state_.position_mm, 120.0, 0.5);
-  EXPECT_NEAR(drive_->position_mm(clock_.now().mono), 120.0, 0.5);
+  EXPECT_NEAR(drive_.position_mm(clock_.now().mono), 120.0, 0.5);
   EXPECT_TRUE(errors_.empty()) << errors();
 
   const Order home = move("home");
@@ -189,8 +46,10 @@ TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
 TEST_F(LiftLogicTest, TheDriveGetsItsSpeedAndWatchdogFromTheHubFile) {
   start();
   const Order stop = action("stop");
+  step(&stop);  // reads the drive
+  step(&stop);  // the reading came back: writes
   step(&stop);
-  const auto registers = drive_->read(clock_.now().mono);
+  const auto registers = drive_.read(clock_.now().mono);
   EXPECT_EQ(registers.holding[ld::holding::kSpeed], 100);
   EXPECT_EQ(registers.holding[ld::holding::kWatchdogMs], 1000);
   EXPECT_EQ(registers.control_word(), ld::control::kStop) << "stop never switches the power stage on";
@@ -228,22 +87,32 @@ TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
   start();
   const Order home = move("home");
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  // The drive answered the request in flight; safe state comes before the next cycle and sends
+  // "stop" at once, without waiting for a cycle.
+  ASSERT_TRUE(script_.complete(clock_.now().mono));
+  const std::size_t before = script_.submitted().size();
   logic_->enter_safe_state();
-  ASSERT_TRUE(
-      wait_worker([](const LiftSnapshot& s) { return (s.written_control & ld::control::kStop) != 0; }));
+  ASSERT_EQ(script_.submitted().size(), before + 1);
+  EXPECT_EQ(submitted_control_word(), ld::control::kStop | ld::control::kEnable) << "halt and hold";
+  ASSERT_TRUE(script_.complete(clock_.now().mono));
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
 
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
   EXPECT_EQ(drive_control_word() & ld::control::kStop, 0);
-  logic_.reset();  // the worker writes "stop" on its way out
+  // "Stop" is the device's write-on-close: the last word even with a move request in flight.
+  EXPECT_EQ(script_.write_on_close(),
+            (std::vector<std::uint16_t>{ld::control::kStop | ld::control::kEnable}));
+  close();
+  EXPECT_TRUE(script_.closed());
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
+  EXPECT_FALSE(drive_.read(clock_.now().mono).status_word() & ld::status::kMoving);
 }
 
 TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   start();
   const Order home = move("home");
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
-  drive_->inject_overcurrent(clock_.now().mono);
+  drive_.inject_overcurrent(clock_.now().mono);
   step(&home);
   EXPECT_TRUE(state_.fault);
   EXPECT_EQ(state_.fault_code, 1);
@@ -270,11 +139,11 @@ TEST_F(LiftLogicTest, AJammedLoadTripsAFollowingErrorAndRecoversAfterReset) {
   start();
   const Order home = move("home");
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
-  drive_->set_blocked(true, clock_.now().mono);
+  drive_.set_blocked(true, clock_.now().mono);
   ASSERT_TRUE(step_until(&home, [&] { return state_.fault; }));
   EXPECT_EQ(state_.fault_code, 2);
   EXPECT_STREQ(state_.fault_text, "following error");
-  drive_->set_blocked(false, clock_.now().mono);
+  drive_.set_blocked(false, clock_.now().mono);
   steps(home, 3);
   EXPECT_TRUE(state_.fault) << "latched in the drive until reset";
   reset_command();
@@ -285,14 +154,14 @@ TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
   start();
   const Order work = move("work");
   ASSERT_TRUE(step_until(&work, [&] { return state_.moving; }));
-  drive_->set_overtemperature(true, clock_.now().mono);
+  drive_.set_overtemperature(true, clock_.now().mono);
   ASSERT_TRUE(step_until(
       &work, [&] { return state_.fault; }, 5));
   reset_command();
   steps(work, 3);
   EXPECT_EQ(state_.fault_code, 3) << "refused while still hot";
   EXPECT_NE(errors().find("lift drive fault 3 (overtemperature)"), std::string::npos) << errors();
-  drive_->set_overtemperature(false, clock_.now().mono);
+  drive_.set_overtemperature(false, clock_.now().mono);
   reset_command();
   ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
 }
@@ -301,30 +170,25 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   start();
   const Order home = move("home");
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
-  server_->set_answering(false);
-  ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }))
-      << "the worker's call timed out";
+  answering_ = false;
+  step(&home);
+  EXPECT_GT(logic_->snapshot().failures_in_a_row, 0u) << "the client's call timed out";
   EXPECT_EQ(logic_->snapshot().last_error, ErrorCode::kTimeout);
-  for (int i = 0; i < 6; ++i) {  // 600 ms of manual time without an answer
-    clock_.advance(kStep);
-    const auto started = std::chrono::steady_clock::now();
-    cycle(&home);
-    // The cycle never waits for the drive. Bound generous (a loaded machine may deschedule us):
-    // a blocking Modbus call would take the 100 ms response timeout at least.
-    EXPECT_LT(std::chrono::steady_clock::now() - started, milliseconds(50));
-  }
+  steps(home, 5);  // 600 ms of manual time without an answer; the last reading's request 700 ms ago
   EXPECT_FALSE(state_.drive_online);
-  EXPECT_NE(errors().find("not answering for 0.6"), std::string::npos) << errors();
+  EXPECT_NE(errors().find("not answering for 0.70 s"), std::string::npos) << errors();
   EXPECT_NE(errors().find("limit 0.50 s, last error: timeout); lift state unknown"), std::string::npos)
       << errors();
 
-  server_->set_answering(true);
-  ASSERT_TRUE(wait_worker(
-      [&](const LiftSnapshot& s) { return s.failures_in_a_row == 0 && s.read_at >= clock_.now().mono; }));
+  answering_ = true;
   step(&home);
   EXPECT_TRUE(state_.drive_online);
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
       << errors();
+  // That request only read the drive (nothing is written without a current reading); "stop" goes
+  // out with the next one, decided from this reading.
+  EXPECT_EQ(submitted_control_word(), ld::control::kStop | ld::control::kEnable);
+  step(&home);
   const float held = state_.position_mm;
   steps(home, 3);
   EXPECT_FLOAT_EQ(state_.position_mm, held) << "latched: no motion until reset";
@@ -341,8 +205,9 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   start();
   const Order home = move("home");
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving && state_.position_mm > 20.0F; }));
-  server_->set_answering(false);
-  ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }));
+  answering_ = false;
+  step(&home);
+  ASSERT_GT(logic_->snapshot().failures_in_a_row, 0u);
   const Time last_read = logic_->snapshot().read_at;
   const float last_seen_mm = state_.position_mm;
 
@@ -372,20 +237,21 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
                                       last_seen_mm)),
             std::string::npos)
       << errors();
-  // Indeed the simulated drive moved on: 50 mm in those 500 ms.
-  EXPECT_GT(drive_->position_mm(clock_.now().mono), last_seen_mm + 40.0);
+  // Indeed the simulated drive moved on: 40 mm in the 400 ms since it was read (100 ms after the
+  // request that read it went out).
+  EXPECT_GT(drive_.position_mm(clock_.now().mono), last_seen_mm + 35.0);
 
-  // Its watchdog trips 1000 ms after the last request it got (about the last read).
+  // Its watchdog trips 1000 ms after the last request it got (the last read, 100 ms after last_read).
   clock_.set(last_read + milliseconds(1200));
   cycle(&home);
   EXPECT_EQ(state_.reading_age_ms, 1200u);
   EXPECT_FALSE(state_.moving);
-  const auto drive = drive_->read(clock_.now().mono);
+  const auto drive = drive_.read(clock_.now().mono);
   EXPECT_EQ(drive.input[ld::input::kFaultCode], static_cast<std::uint16_t>(ld::FaultCode::kWatchdog));
   EXPECT_EQ(drive.input[ld::input::kStatusWord] & ld::status::kMoving, 0);
 
   // A fresh reading confirms it: stopped by its watchdog, values current again.
-  server_->set_answering(true);
+  answering_ = true;
   step(&home);
   EXPECT_TRUE(state_.drive_online);
   EXPECT_LE(state_.reading_age_ms, 100u);
@@ -393,7 +259,7 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   EXPECT_TRUE(state_.fault);
   EXPECT_EQ(state_.fault_code, 4);
   EXPECT_STREQ(state_.fault_text, "communication watchdog");
-  EXPECT_NEAR(state_.position_mm, drive_->position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
+  EXPECT_NEAR(state_.position_mm, drive_.position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
   EXPECT_GT(state_.position_mm, last_seen_mm + 80.0F) << "where the drive went on its own";
   EXPECT_EQ(errors().find("lift motion unknown"), std::string::npos) << errors();
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
@@ -401,15 +267,14 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
 }
 
 TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
-  server_->set_answering(false);
+  answering_ = false;
   start();
   const Order home = move("home");
-  ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }));
-  clock_.advance(milliseconds(400));
   cycle(&home);
-  EXPECT_TRUE(errors_.empty()) << "not yet: " << errors();
-  clock_.advance(milliseconds(200));
-  cycle(&home);
+  steps(home, 4);
+  EXPECT_EQ(logic_->snapshot().last_error, ErrorCode::kTimeout);
+  EXPECT_TRUE(errors_.empty()) << "not yet (400 ms): " << errors();
+  steps(home, 2);
   EXPECT_FALSE(state_.drive_online);
   EXPECT_EQ(state_.reading_age_ms, kNeverRead);
   EXPECT_FALSE(state_.moving);
@@ -418,7 +283,7 @@ TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
             std::string::npos)
       << errors();
   // A drive that comes up after the hub is normal operation: not latched.
-  server_->set_answering(true);
+  answering_ = true;
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; })) << errors();
 }
 
@@ -441,4 +306,4 @@ TEST_F(LiftLogicTest, BadMoveCommandsAreRejectedWithTheirReason) {
 }
 
 }  // namespace
-}  // namespace hubrt::tool_ecu
+}  // namespace hubrt::tool_ecu::testing
