@@ -71,6 +71,7 @@ struct CorpusLogic {
   static constexpr std::array<std::string_view, 2> kActions{"probe", "reset"};
   bool validate(const Command& /*command*/, Problem& /*problem*/) const noexcept { return true; }
   void read_inputs(Time /*now*/) noexcept {}
+  NodeCondition condition() const noexcept { return NodeCondition::kOk; }
   void update(const Command* /*command*/, Time /*now*/) noexcept {}
   void reset() noexcept {}
   void report(State& /*state*/, ErrorList& /*errors*/, Time /*now*/) noexcept {}

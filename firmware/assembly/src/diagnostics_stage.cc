@@ -13,9 +13,6 @@ char* text(const runtime::TextBuffer<96>& b) noexcept {
 char* text(const runtime::TextBuffer<191>& b) noexcept {
   return const_cast<char*>(b.c_str());
 }  // NOLINT
-char* text(const runtime::TextBuffer<40>& b) noexcept {
-  return const_cast<char*>(b.c_str());
-}  // NOLINT
 
 std::uint8_t level_of(runtime::Health health) noexcept {
   return static_cast<std::uint8_t>(health);
@@ -69,10 +66,10 @@ DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__Diagnosti
 }
 
 void DiagnosticsStage::set_value(std::size_t status, std::size_t slot, const char* key,
-                                 runtime::TextBuffer<40>& value) noexcept {
+                                 const char* value) noexcept {
   auto& pair = statuses_[status].pairs[slot];
-  pair.key = const_cast<char*>(key);  // NOLINT: static string, never written through
-  pair.value = text(value);
+  pair.key = const_cast<char*>(key);      // NOLINT: static string, never written through
+  pair.value = const_cast<char*>(value);  // NOLINT: our buffer, never written through
 }
 
 void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
@@ -81,13 +78,17 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   s.name.format("{}: cycle", hub_.options().name);
   const double period_ms = to_seconds(hub_.options().period) * 1e3;
   s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
+  // At most 15 values (kMaxValues is 16): 3 always, 12 more when every option is given.
   std::size_t n = 0;
   const auto add = [&](const char* key, auto value) {
     s.values[n].format("{}", value);
-    set_value(0, n, key, s.values[n]);
+    set_value(0, n, key, s.values[n].c_str());
     ++n;
   };
   add("hub_type", hub_.options().type);
+  add("lifecycle", hub_.lifecycle().name());
+  s.lifecycle_reason.assign(hub_.lifecycle().reason());
+  set_value(0, n++, "lifecycle_reason", s.lifecycle_reason.c_str());
   add("period_ms", period_ms);
   add("rate_hz", 1e3 / period_ms);
   if (command_timeout_ > Duration::zero()) add("command_timeout_ms", to_seconds(command_timeout_) * 1e3);
@@ -125,10 +126,14 @@ void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBa
   std::size_t n = 0;
   const auto add = [&](const char* key, auto value) {
     s.values[n].format("{}", value);
-    set_value(index, n, key, s.values[n]);
+    set_value(index, n, key, s.values[n].c_str());
     ++n;
   };
   add("node_type", node.type());
+  add("lifecycle", node.lifecycle().name());
+  s.lifecycle_reason.assign(node.lifecycle().reason());
+  set_value(index, n++, "lifecycle_reason", s.lifecycle_reason.c_str());
+  add("lifecycle_transitions", node.lifecycle().transitions());
   add("states_published", node.published());
   add("commands_rejected", node.rejected());
   add("states_deferred", node.states_deferred());

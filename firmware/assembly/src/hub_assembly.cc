@@ -122,6 +122,7 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   options.log = log;
   out->hub = std::make_unique<runtime::Hub>(std::move(options));
   out->subscriptions = std::make_unique<hub_api::Subscriptions>(out->config, *out->participant);
+  out->hub->begin_opening_devices();
   const hub_api::HubContext context{out->config,   out->board, *out->backend, *out->participant,
                                     request.waker, log,        clock,         *out->subscriptions};
   if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();

@@ -15,6 +15,7 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
+#include "hubrt/runtime/lifecycle.h"
 
 #include "commands.h"
 #include "sample_decoder.h"
@@ -83,12 +84,20 @@ std::string details(const nlohmann::ordered_json& state) {
   return out;
 }
 
+// The State header's lifecycle by name ("operational"), "-" when the State has none.
+std::string lifecycle(const nlohmann::ordered_json& state) {
+  if (!state.contains("header") || !state["header"].contains("lifecycle")) return "-";
+  const auto& value = state["header"]["lifecycle"];
+  if (!value.is_number_unsigned() || value.get<std::uint64_t>() > 255) return "unknown";
+  return std::string(runtime::lifecycle_name(static_cast<std::uint8_t>(value.get<std::uint64_t>())));
+}
+
 void draw(const std::map<std::string, Watched>& watched, bool plain,
           std::chrono::steady_clock::time_point now) {
   std::string screen;
   if (!plain) screen += "\x1b[H\x1b[2J";
-  screen += fmt::format("{:<34} {:<5} {:>7} {:<16} {}\n", "STATE TOPIC", "FRESH", "T+ [s]", "ECHO ACTION",
-                        "STATE / ERRORS");
+  screen += fmt::format("{:<34} {:<5} {:<15} {:>7} {:<16} {}\n", "STATE TOPIC", "FRESH", "LIFECYCLE",
+                        "T+ [s]", "ECHO ACTION", "STATE / ERRORS");
   for (const auto& [topic, w] : watched) {
     if (w.received == 0) {
       screen += fmt::format("{:<34} (discovered, no State yet)\n", topic);
@@ -100,8 +109,8 @@ void draw(const std::map<std::string, Watched>& watched, bool plain,
     const std::string fresh = silent ? "SILENT" : (s.value("fresh_msg", false) ? "yes" : "no");
     std::string action = s.contains("echo") ? s["echo"].value("action", "") : "";
     if (action.empty()) action = "-";
-    screen += fmt::format("{:<34} {:<5} {:>7.1f} {:<16} {}\n", topic, fresh, s.value("t_plus", 0.0), action,
-                          details(s));
+    screen += fmt::format("{:<34} {:<5} {:<15} {:>7.1f} {:<16} {}\n", topic, fresh, lifecycle(s),
+                          s.value("t_plus", 0.0), action, details(s));
     if (s.contains("error_list")) {
       for (const auto& e : s["error_list"])
         screen += fmt::format("{:<34}   ! {}\n", "", e.get<std::string>());

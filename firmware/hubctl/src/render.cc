@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/runtime/lifecycle.h"
+
 #include "sample_decoder.h"
 
 namespace hubrt::hubctl {
@@ -20,11 +22,22 @@ std::string scalar(const nlohmann::ordered_json& v) {
   return safe_dump(v);
 }
 
-void render(const nlohmann::ordered_json& value, int indent, std::string& out) {
+// A State header's lifecycle number, with its name: "3 (operational)".
+bool is_lifecycle(std::string_view parent_key, std::string_view key, const nlohmann::ordered_json& item) {
+  return parent_key == "header" && key == "lifecycle" && item.is_number_unsigned();
+}
+
+void render(const nlohmann::ordered_json& value, int indent, std::string& out,
+            std::string_view parent_key = {}) {
   const std::string pad(static_cast<std::size_t>(indent), ' ');
   if (value.is_object()) {
     for (const auto& [key, item] : value.items()) {
-      if (is_scalar(item)) {
+      if (is_lifecycle(parent_key, key, item)) {
+        const auto number = item.get<std::uint64_t>();
+        const std::string_view name =
+            number <= 255 ? runtime::lifecycle_name(static_cast<std::uint8_t>(number)) : "unknown";
+        out += fmt::format("{}{}: {} ({})\n", pad, key, number, name);
+      } else if (is_scalar(item)) {
         out += fmt::format("{}{}: {}\n", pad, key, scalar(item));
       } else if (item.empty()) {
         out += fmt::format("{}{}: {}\n", pad, key, item.is_array() ? "[]" : "{}");
@@ -34,7 +47,7 @@ void render(const nlohmann::ordered_json& value, int indent, std::string& out) {
         out += fmt::format("{}{}: [{}]\n", pad, key, joined);
       } else {
         out += fmt::format("{}{}:\n", pad, key);
-        render(item, indent + 2, out);
+        render(item, indent + 2, out, key);
       }
     }
   } else if (value.is_array()) {

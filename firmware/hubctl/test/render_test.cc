@@ -7,7 +7,7 @@ namespace {
 
 TEST(RenderHuman, NestedStateReadsLikeYaml) {
   const auto value = nlohmann::ordered_json::parse(R"({
-    "header": {"stamp": {"sec": 5, "nanosec": 10}, "seq": 42},
+    "header": {"stamp": {"sec": 5, "nanosec": 10}, "seq": 42, "lifecycle": 3},
     "name": "dock",
     "echo": {"target_type": "dock", "target_name": "", "action": "monitor"},
     "fresh_msg": true,
@@ -21,6 +21,7 @@ TEST(RenderHuman, NestedStateReadsLikeYaml) {
             "    sec: 5\n"
             "    nanosec: 10\n"
             "  seq: 42\n"
+            "  lifecycle: 3 (operational)\n"
             "name: dock\n"
             "echo:\n"
             "  target_type: dock\n"
@@ -34,6 +35,18 @@ TEST(RenderHuman, NestedStateReadsLikeYaml) {
             "    occupied: false\n"
             "  - name: spare\n"
             "    occupied: true\n");
+}
+
+TEST(RenderHuman, LifecycleNamedOnlyInAHeader) {
+  const auto value = nlohmann::ordered_json::parse(
+      R"({"header": {"lifecycle": 4}, "tool": {"header": {"lifecycle": 200}}, "lifecycle": 2})");
+  EXPECT_EQ(render_human(value),
+            "header:\n"
+            "  lifecycle: 4 (fault)\n"
+            "tool:\n"
+            "  header:\n"
+            "    lifecycle: 200 (unknown)\n"
+            "lifecycle: 2\n");
 }
 
 TEST(RenderHuman, ScalarListsStayOnOneLine) {

@@ -49,7 +49,7 @@ std::vector<ros::MsgSpec> package_with_dock_state(const std::string& dock_state)
       msg("diagnostic_msgs", "DiagnosticStatus",
           "byte OK=0\nbyte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n"),
       msg("diagnostic_msgs", "DiagnosticArray", "std_msgs/Header header\nDiagnosticStatus[] status\n"),
-      msg("hub_msgs", "StateHeader", "builtin_interfaces/Time stamp\nuint64 seq\n"),
+      msg("hub_msgs", "StateHeader", "builtin_interfaces/Time stamp\nuint64 seq\nuint8 lifecycle\n"),
       msg("hub_msgs", "DockCommand", "string target_type\nstring target_name\nstring action\n"),
       msg("hub_msgs", "DockSlot", "string name\nbool occupied\n"),
       msg("hub_msgs", "DockState", dock_state),
@@ -114,7 +114,8 @@ TEST(FindDrift, NestedTypeNamesIncludingTheBuiltinTimeMapping) {
                   "field 3 'echo' (line 3) is hub_msgs/DockSlot in the .msg but hub_msgs/DockCommand in the "
                   "IDL (IDL type hub_msgs::msg::dds_::DockCommand_)"));
   auto msgs = package_with_dock_state(kDockState);
-  msgs[5] = msg("hub_msgs", "StateHeader", "builtin_interfaces/Duration stamp\nuint64 seq\n");
+  msgs[5] =
+      msg("hub_msgs", "StateHeader", "builtin_interfaces/Duration stamp\nuint64 seq\nuint8 lifecycle\n");
   EXPECT_THAT(drift(msgs),
               ElementsAre("hub_msgs/msg/StateHeader (StateHeader.msg vs IDL "
                           "hub_msgs::msg::dds_::StateHeader_ in hub_msgs_common.idl): field 1 'stamp' "

@@ -70,7 +70,8 @@ TEST(GeneratedTables, DockStateKindsAndNesting) {
   EXPECT_EQ(field(t, "slots").bound, 0u);
 
   const TypeInfo& header = type_info_of<hub_msgs_msg_dds__StateHeader_>();
-  EXPECT_EQ(field_names(header), (std::vector<std::string>{"stamp", "seq"}));
+  EXPECT_EQ(field_names(header), (std::vector<std::string>{"stamp", "seq", "lifecycle"}));
+  EXPECT_EQ(field(header, "lifecycle").kind, FieldKind::kUInt8);
   EXPECT_EQ(field(header, "stamp").nested, &type_info_of<builtin_interfaces_msg_dds__Time_>());
   EXPECT_EQ(field(header, "seq").kind, FieldKind::kUInt64);
   EXPECT_EQ(describe_type(field(t, "slots")), "sequence<hub_msgs/msg/DockSlot>");

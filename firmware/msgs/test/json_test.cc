@@ -26,6 +26,7 @@ void fill_by_hand(hub_msgs_msg_dds__DockState_& s) {
   s.header.stamp.sec = 1700000000;
   s.header.stamp.nanosec = 250000000;
   s.header.seq = 42;
+  s.header.lifecycle = 3;
   s.name = dds_string_dup("dock1");
   s.echo.target_type = dds_string_dup("dock");
   s.echo.target_name = dds_string_dup("dock1");
@@ -46,7 +47,7 @@ void fill_by_hand(hub_msgs_msg_dds__DockState_& s) {
 }
 
 const char* const kDockStateJson =
-    R"({"header":{"stamp":{"sec":1700000000,"nanosec":250000000},"seq":42},"name":"dock1",)"
+    R"({"header":{"stamp":{"sec":1700000000,"nanosec":250000000},"seq":42,"lifecycle":3},"name":"dock1",)"
     R"("echo":{"target_type":"dock","target_name":"dock1","action":"monitor"},"fresh_msg":true,"t_plus":0.8,)"
     R"("got_reset":false,"error_list":["slot sensor 2 stuck"],)"
     R"("slots":[{"name":"smart_tool","occupied":true},{"name":"filter_tool","occupied":false}]})";

@@ -68,7 +68,33 @@ void Hub::step(const Instant& now, bool publish_all) noexcept {
     const Status published = publish_all ? node->publish(now) : node->publish_if_due(now, took_effect);
     if (!published.is_ok()) ++stats_.publish_errors;
   }
+  derive_lifecycle();
   for (const auto& stage : stages_) stage->after_nodes(now, publish_all, any_took_effect);
+}
+
+void Hub::begin_opening_devices() noexcept {
+  if (lifecycle_.enter(Lifecycle::kOpeningDevices, "files read; opening the devices of the nodes"))
+    log_transition();
+}
+
+void Hub::derive_lifecycle() noexcept {
+  if (lifecycle_.state() == Lifecycle::kStopping || nodes_.empty()) return;
+  const NodeBase* worst = nodes_.front().get();
+  for (const auto& node : nodes_) {
+    if (severity(node->lifecycle().state()) > severity(worst->lifecycle().state())) worst = node.get();
+  }
+  const Lifecycle state = worst->lifecycle().state();
+  const bool changed = state == Lifecycle::kOperational
+                           ? lifecycle_.enter(state, "every node operational")
+                           : lifecycle_.enter(state, "node '{}' {}: {}", worst->name(), lifecycle_name(state),
+                                              worst->lifecycle().reason());
+  if (changed) log_transition();
+}
+
+void Hub::log_transition() const noexcept {
+  options_.log->info("hub '{}': lifecycle {} -> {} (transition {}): {}", options_.name,
+                     lifecycle_name(lifecycle_.previous()), lifecycle_.name(), lifecycle_.transitions(),
+                     lifecycle_.reason());
 }
 
 std::uint64_t Hub::states_deferred() const noexcept {
@@ -79,6 +105,7 @@ std::uint64_t Hub::states_deferred() const noexcept {
 }
 
 void Hub::enter_safe_state() noexcept {
+  if (lifecycle_.enter(Lifecycle::kStopping, "stopping: outputs driven safe")) log_transition();
   for (const auto& node : nodes_) node->enter_safe_state();
 }
 

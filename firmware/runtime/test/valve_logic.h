@@ -1,5 +1,5 @@
 // The test node type: opens a valve on "open", closes it otherwise; a latched "overpressure"
-// fault, cleared by reset, keeps it closed.
+// fault, cleared by reset, keeps it closed. Its valve device can go missing (device_missing).
 #pragma once
 
 #include <array>
@@ -18,6 +18,8 @@ using ValveState = hubrt_test_msg_dds__ValveState_;
 struct ValveWorld {  // what the test observes and pokes, shared with the logic by reference
   bool open = false;
   bool overpressure_input = false;
+  bool device_missing = false;            // the valve's device is not open (condition() reports it)
+  bool last_update_with_command = false;  // what the last update() was given
   int updates_with_command = 0;
   int updates_without_command = 0;
   int resets = 0;
@@ -44,7 +46,12 @@ class ValveLogic {
   void read_inputs(Time /*now*/) noexcept {
     if (world_->overpressure_input) fault_latched_ = true;
   }
+  NodeCondition condition() const noexcept {
+    if (fault_latched_) return NodeCondition::kFault;
+    return world_->device_missing ? NodeCondition::kDevicesMissing : NodeCondition::kOk;
+  }
   void update(const Command* command, Time /*now*/) noexcept {
+    world_->last_update_with_command = command != nullptr;
     if (command == nullptr) {
       ++world_->updates_without_command;
       world_->open = false;
@@ -61,6 +68,7 @@ class ValveLogic {
   void report(State& state, ErrorList& errors, Time /*now*/) noexcept {
     state.open = world_->open;
     if (fault_latched_) errors.add("overpressure: valve held closed until reset");
+    if (world_->device_missing) errors.add("valve device not available");
   }
   void enter_safe_state() noexcept {
     ++world_->safe_state_entries;

@@ -1,5 +1,6 @@
 #include "dock_logic.h"
 
+#include <algorithm>
 #include <set>
 
 #include <fmt/format.h>
@@ -71,6 +72,14 @@ void DockLogic::read_inputs(Time now) noexcept {
       }
     }
   }
+}
+
+runtime::NodeCondition DockLogic::condition() const noexcept {
+  const auto failed = [](const Slot& slot) { return slot.failures > 0; };
+  const auto missing = [](const Slot& slot) { return !slot.sensor.is_open(); };
+  if (std::any_of(slots_.begin(), slots_.end(), failed)) return runtime::NodeCondition::kFault;
+  if (std::any_of(slots_.begin(), slots_.end(), missing)) return runtime::NodeCondition::kDevicesMissing;
+  return runtime::NodeCondition::kOk;
 }
 
 void DockLogic::reset() noexcept {

@@ -47,6 +47,9 @@ class DockLogic {
 
   bool validate(const Command& /*command*/, runtime::Problem& /*problem*/) const noexcept { return true; }
   void read_inputs(Time now) noexcept;
+  // kFault: a sensor failed to read since the last reset (latched); kDevicesMissing: a sensor is
+  // not open.
+  runtime::NodeCondition condition() const noexcept;
   void update(const Command* /*in_force*/, Time /*now*/) noexcept {}  // no outputs
   void reset() noexcept;
   void report(State& state, runtime::ErrorList& errors, Time now) noexcept;

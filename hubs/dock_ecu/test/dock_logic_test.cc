@@ -109,9 +109,11 @@ TEST_F(DockLogicTest, AReadFailureIsLatchedUntilReset) {
   cycle(logic);
   auto wiring = fake_->wiring("dock.slot.filter_tool");
   ASSERT_TRUE(wiring.is_ok());
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kOk);
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
   DockState state = cycle(logic);
   EXPECT_FALSE(slot_occupied(state, 1)) << "an unreadable slot never claims a tool is home";
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault) << "latched until a reset";
   ASSERT_EQ(errors_.size(), 1u);
   EXPECT_EQ(errors_.at(0),
             "slot 'filter_tool': sensor dock.slot.filter_tool failed to read 1 time(s) since the last reset "
@@ -136,6 +138,7 @@ TEST_F(DockLogicTest, AMissingChipIsReportedAndTheOtherSlotsWork) {
   ASSERT_EQ(errors_.size(), 4u);
   EXPECT_NE(errors_.at(3).find("slot 'spare': sensor dock.slot.spare not available: "), std::string::npos)
       << errors_.at(3);
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kDevicesMissing);
   wiring.value().chip->reappear();
   clock_.advance(std::chrono::seconds(3));  // past the retry interval
   cycle(logic);

@@ -165,6 +165,16 @@ void RspLogic::evaluate_permission(Time now) noexcept {
   unlock_allowed_ = unlock_permitted(tool_, tool_name(), *dock_, now, unlock_blocked_);
 }
 
+runtime::NodeCondition RspLogic::condition() const noexcept {
+  if (fault_latched()) return runtime::NodeCondition::kFault;
+  const auto missing = [](const Line& line) { return !line.input.is_open(); };
+  const bool devices_open = devices_.lock_valve.is_open() && devices_.gripper_valve.is_open() &&
+                            devices_.pressure.input.is_open() &&
+                            std::none_of(devices_.tool_lines.begin(), devices_.tool_lines.end(), missing) &&
+                            std::none_of(devices_.confirms.begin(), devices_.confirms.end(), missing);
+  return devices_open ? runtime::NodeCondition::kOk : runtime::NodeCondition::kDevicesMissing;
+}
+
 void RspLogic::update(const Command* in_force, Time now) noexcept {
   const std::string_view action = in_force == nullptr ? std::string_view() : view(in_force->action);
   safe_state_ = in_force == nullptr || fault_latched() || action == runtime::kResetAction;

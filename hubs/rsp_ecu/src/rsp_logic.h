@@ -59,6 +59,9 @@ class RspLogic {
   // evaluated (the reason goes to error_list; the command in force stays, the lock closed).
   bool validate(const Command& command, runtime::Problem& problem) const noexcept;
   void read_inputs(Time now) noexcept;
+  // kFault: a pressure or gripper failure is latched; kDevicesMissing: a valve or an input is not
+  // open.
+  runtime::NodeCondition condition() const noexcept;
   void update(const Command* in_force, Time now) noexcept;
   void reset() noexcept;
   void report(State& state, runtime::ErrorList& errors, Time now) noexcept;

@@ -464,6 +464,7 @@ TEST_F(RspLogicTest, APressureDropWhileOpenClosesTheLockAndAResetWithoutPressure
   EXPECT_STREQ(state.lock, "closing") << "no air: the lock cannot move until pressure returns";
   EXPECT_FALSE(state.unlock_allowed);
   EXPECT_STREQ(state.unlock_blocked, "a pressure failure is latched; reset first");
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault);
   logic.reset();
   OwnedCommand reset = command("reset");
   cycle(logic, &reset);
@@ -559,6 +560,8 @@ TEST_F(RspLogicTest, AMissingChipIsReportedEverythingStaysLockedAndItRecovers) {
   EXPECT_FALSE(state.pressure_known) << "the chip is gone";
   EXPECT_TRUE(errors_.contains("output rsp.lock_valve not available:")) << errors_.at(0);
   EXPECT_TRUE(errors_.contains("input rsp.tool_id.smart_tool not available:"));
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault)
+      << "the unreadable pressure switch latched a pressure failure: it outranks the missing devices";
 
   wiring.value().chip->reappear();
   clock_.advance(std::chrono::seconds(3));  // past the retry interval
@@ -570,6 +573,7 @@ TEST_F(RspLogicTest, AMissingChipIsReportedEverythingStaysLockedAndItRecovers) {
   state = run_for(logic, milliseconds(100), &unlock);
   EXPECT_TRUE(lock_valve_energised());
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
+  EXPECT_EQ(logic.condition(), runtime::NodeCondition::kOk);
 }
 
 TEST_F(RspLogicTest, AFailedWriteIsReported) {

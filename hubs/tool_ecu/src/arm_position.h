@@ -43,6 +43,10 @@ class ArmSensors {
   ArmPosition read(Time now) noexcept;
   // Adds what is wrong with the sensors (not available, read failed) to `errors`.
   void report(runtime::ErrorList& errors) const noexcept;
+  // All three sensors open.
+  [[nodiscard]] bool all_open() const noexcept {
+    return sensors_[0].input.is_open() && sensors_[1].input.is_open() && sensors_[2].input.is_open();
+  }
 
  private:
   struct Sensor {

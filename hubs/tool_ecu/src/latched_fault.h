@@ -27,6 +27,8 @@ class LatchedFault {
   // Latched and the cause gone: only a reset clears it.
   [[nodiscard]] bool only_latched() const noexcept { return latched_ && !present_; }
   [[nodiscard]] bool active() const noexcept { return present_ || latched_; }
+  // Latched (present or not): a reset is needed to clear it.
+  [[nodiscard]] bool latched() const noexcept { return latched_; }
 
  private:
   bool present_ = false;

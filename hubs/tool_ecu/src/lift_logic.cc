@@ -100,6 +100,11 @@ void LiftLogic::read_inputs(Time now) noexcept {
   }
 }
 
+runtime::NodeCondition LiftLogic::condition() const noexcept {
+  if (not_answering_.latched() || drive_fault_.latched()) return runtime::NodeCondition::kFault;
+  return snap_.answered ? runtime::NodeCondition::kOk : runtime::NodeCondition::kDevicesMissing;
+}
+
 void LiftLogic::update(const Command* in_force, Time now) noexcept {
   target_ = -1;
   LiftIntent intent = intent_;

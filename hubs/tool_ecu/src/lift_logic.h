@@ -54,6 +54,9 @@ class LiftLogic {
   // move: position is one of the hub file's.
   bool validate(const Command& command, runtime::Problem& problem) const noexcept;
   void read_inputs(Time now) noexcept;
+  // kFault: a drive fault or the drive having stopped answering is latched; kDevicesMissing: the
+  // drive has not answered since start (requests keep going out).
+  runtime::NodeCondition condition() const noexcept;
   void update(const Command* in_force, Time now) noexcept;
   void reset() noexcept;
   void report(State& state, runtime::ErrorList& errors, Time now) noexcept;

@@ -37,6 +37,10 @@ class RunLines {
   void drive_safe() noexcept;
   // What the lines show, from the last levels written successfully.
   [[nodiscard]] RunOutput shown() const noexcept { return shown_; }
+  // Both lines open.
+  [[nodiscard]] bool all_open() const noexcept {
+    return lines_[0].output != nullptr && lines_[1].output != nullptr;
+  }
   // Lines not open or whose last write failed.
   void report(runtime::ErrorList& errors) const noexcept;
 

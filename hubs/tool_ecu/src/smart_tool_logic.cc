@@ -299,6 +299,18 @@ SmartToolLogic::Want SmartToolLogic::decide(const Command* in_force, Time /*now*
 
 // --- acting ------------------------------------------------------------------------------------
 
+runtime::NodeCondition SmartToolLogic::condition() const noexcept {
+  if (controller_lost_.latched() || bus_fault_.latched() || controller_alarm_.latched() ||
+      summary_alarm_fault_.latched()) {
+    return runtime::NodeCondition::kFault;
+  }
+  const bool inputs_open = inputs_.button_forward.is_open() && inputs_.button_reverse.is_open() &&
+                           inputs_.torque_reached.is_open() && inputs_.summary_alarm.is_open();
+  const bool devices_open =
+      controller_.bus_open() && lines_.all_open() && arm_sensors_.all_open() && inputs_open;
+  return devices_open ? runtime::NodeCondition::kOk : runtime::NodeCondition::kDevicesMissing;
+}
+
 void SmartToolLogic::update(const Command* in_force, Time now) noexcept {
   Want want = decide(in_force, now);
   if (want.kind != refused_) {

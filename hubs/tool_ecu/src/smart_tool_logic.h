@@ -63,6 +63,11 @@ class SmartToolLogic {
   // tighten: run_id 1.., program one of the hub file's.
   bool validate(const Command& command, runtime::Problem& problem) const noexcept;
   void read_inputs(Time now) noexcept;
+  // kFault: a controller loss, bus fault, controller alarm or summary alarm is latched (a cause
+  // still present after a reset is not latched: the logic keeps the tool idle for it itself, and
+  // the reset must reach it to clear the controller's alarm); a program the controller rejected
+  // only blocks that program. kDevicesMissing: the CAN bus, a run line or an input is not open.
+  runtime::NodeCondition condition() const noexcept;
   void update(const Command* in_force, Time now) noexcept;
   void reset() noexcept;
   void report(State& state, runtime::ErrorList& errors, Time now) noexcept;

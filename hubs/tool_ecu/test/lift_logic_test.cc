@@ -121,6 +121,7 @@ TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   EXPECT_NE(errors().find("lift drive fault 1 (overcurrent); lift stopped; send reset to clear"),
             std::string::npos)
       << errors();
+  EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kFault) << "the node's lifecycle: fault";
   const float held = state_.position_mm;
   steps(home, 5);  // the planner keeps asking: nothing moves
   EXPECT_FLOAT_EQ(state_.position_mm, held);
@@ -129,6 +130,7 @@ TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   ASSERT_TRUE(step_until(
       &home, [&] { return !state_.fault; }, 10))
       << "the reset pulse reached the drive";
+  EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kOk);
   // The reset command took effect; the planner's next move is fresh: the drive needs an enable edge.
   const Order floating = move("float");
   ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at) == "float"; })) << errors();

@@ -286,7 +286,9 @@ TEST_F(SmartToolLogicTest, TheSummaryAlarmForcesIdleAndLatchesUntilReset) {
   cycles(bolt2, 5);
   EXPECT_EQ(output(), "idle") << "latched";
   EXPECT_EQ(blocked_by(), "summary alarm (latched: send reset)");
+  EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kFault) << "the node's lifecycle: fault";
   reset_command();
+  EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kOk);
   EXPECT_TRUE(errors_.empty()) << errors();
   ASSERT_TRUE(tighten_to_the_end(bolt2));
   EXPECT_TRUE(state_.last_result.ok);

@@ -220,6 +220,9 @@ void StationBridge::publish(const Instant& now) {
 
   hub_msgs_msg_dds__StationState_ state{};
   state.header.seq = ++published_;
+  // The station model has no devices nor latched faults: it follows its commands while fresh.
+  state.header.lifecycle =
+      static_cast<std::uint8_t>(fresh ? runtime::Lifecycle::kOperational : runtime::Lifecycle::kSafe);
   state.header.stamp.sec = static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000);
   state.header.stamp.nanosec = static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000);
   state.name = wire(kStation);

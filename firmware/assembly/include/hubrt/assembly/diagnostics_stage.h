@@ -1,6 +1,8 @@
 // Publishes the hub's health on /diagnostics as diagnostic_msgs/DiagnosticArray, the topic ROS
 // users already watch (rqt_runtime_monitor, ros2 topic echo): one status for the cycle and one
-// per node, at a low rate, built in storage sized once.
+// per node, at a low rate, built in storage sized once. Both carry the lifecycle (lifecycle.h):
+// the hub's overall state (keys lifecycle, lifecycle_reason) and each node's (lifecycle,
+// lifecycle_reason, lifecycle_transitions).
 #pragma once
 
 #include <array>
@@ -50,6 +52,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
     runtime::TextBuffer<96> name;
     runtime::TextBuffer<191> message;
     std::array<runtime::TextBuffer<40>, kMaxValues> values;
+    runtime::LifecycleState::Reason lifecycle_reason;  // longer than a value slot
     std::array<diagnostic_msgs_msg_dds__KeyValue_, kMaxValues> pairs{};
   };
 
@@ -59,8 +62,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
                    Duration immediate_state_interval, const std::atomic<std::uint64_t>* log_lines_dropped);
   void fill_hub_status(const Instant& now) noexcept;
   void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
-  void set_value(std::size_t status, std::size_t slot, const char* key,
-                 runtime::TextBuffer<40>& value) noexcept;
+  void set_value(std::size_t status, std::size_t slot, const char* key, const char* value) noexcept;
 
   dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic_;
   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer_;

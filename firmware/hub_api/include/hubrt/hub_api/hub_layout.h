@@ -118,6 +118,8 @@ class HubLevelLogic {
 
   bool validate(const Command& /*command*/, runtime::Problem& /*problem*/) const noexcept { return true; }
   void read_inputs(Time /*now*/) noexcept {}
+  // The hub-level command has no devices and latches nothing: safe or operational by its command.
+  runtime::NodeCondition condition() const noexcept { return runtime::NodeCondition::kOk; }
   // A fragment is posted when a hub command arrives (new or repeated), not every cycle, so each
   // node's watchdog is fed exactly when the hub's is and trips in the same cycle: re-posting the
   // last fragment every cycle would keep a node commanded one timeout longer than its hub.

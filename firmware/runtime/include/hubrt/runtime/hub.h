@@ -14,6 +14,7 @@
 
 #include "hubrt/base/time.h"
 #include "hubrt/runtime/hub_alerts.h"
+#include "hubrt/runtime/lifecycle.h"
 #include "hubrt/runtime/node.h"
 
 namespace hubrt::runtime {
@@ -73,13 +74,18 @@ class Hub {
   void command_step(const Instant& now) noexcept;
   // Overruns observed by the timer (periods that passed without a cycle).
   void count_overruns(std::uint64_t missed) noexcept { stats_.overruns += missed; }
-  // Drives every node's outputs to its safe state (shutdown).
+  // Lifecycle phase: the hub type is about to open its nodes' devices (before the first
+  // add_node()). The first cycle ends the phase: from then on the hub's state is its nodes' worst.
+  void begin_opening_devices() noexcept;
+  // Drives every node's outputs to its safe state (shutdown); the hub's lifecycle goes to stopping.
   void enter_safe_state() noexcept;
   // After enter_safe_state(), on the way out: lets every stage report the safe state at `now`.
   void report_safe_state(const Instant& now) noexcept;
 
   [[nodiscard]] const HubOptions& options() const noexcept { return options_; }
   [[nodiscard]] const CycleStats& stats() const noexcept { return stats_; }
+  // The hub's overall lifecycle state (lifecycle.h), with the reason of its last transition.
+  [[nodiscard]] const LifecycleState& lifecycle() const noexcept { return lifecycle_; }
   [[nodiscard]] const std::vector<std::unique_ptr<NodeBase>>& nodes() const noexcept { return nodes_; }
   [[nodiscard]] NodeBase* find_node(std::string_view name) const noexcept;
   // Immediate States held back by every node's and stage's budget, since start.
@@ -91,6 +97,9 @@ class Hub {
 
  private:
   void step(const Instant& now, bool publish_all) noexcept;
+  // The worst state of the nodes after a step, unless the hub is stopping.
+  void derive_lifecycle() noexcept;
+  void log_transition() const noexcept;
 
   HubOptions options_;
   std::vector<std::unique_ptr<NodeBase>> nodes_;
@@ -98,6 +107,7 @@ class Hub {
   std::vector<std::shared_ptr<void>> owned_;
   HubAlerts alerts_;
   CycleStats stats_;
+  LifecycleState lifecycle_{Lifecycle::kConfiguring, "reading the hub and board files"};
 };
 
 }  // namespace hubrt::runtime

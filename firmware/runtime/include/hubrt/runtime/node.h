@@ -1,7 +1,7 @@
 // A node: one piece of equipment with a Command type and a State type (the paper's §5.3). The
 // generic part here does what every node does — command intake and validation, echo, fresh_msg,
-// t_plus, got_reset, error_list, the watchdog, the State header — and calls the node type's
-// Logic for what only it knows.
+// t_plus, got_reset, error_list, the watchdog, the lifecycle (lifecycle.h), the State header — and
+// calls the node type's Logic for what only it knows.
 #pragma once
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include "hubrt/runtime/escaped_text.h"
 #include "hubrt/runtime/hub_alerts.h"
 #include "hubrt/runtime/immediate_state_budget.h"
+#include "hubrt/runtime/lifecycle.h"
 #include "hubrt/runtime/message_ops.h"
 #include "hubrt/runtime/ports.h"
 
@@ -44,14 +45,19 @@ concept NodeLogic = requires(L& logic, const L& const_logic, const typename L::C
   { const_logic.validate(command, problem) } -> std::same_as<bool>;
   // Samples the node's inputs.
   { logic.read_inputs(now) } -> std::same_as<void>;
-  // Decides and writes the outputs for the command in force; nullptr means none is in force
-  // (never received, or the watchdog tripped): the node's safe state.
+  // What keeps the node from following its command, judged from what it knows after
+  // read_inputs(): a latched fault that needs a reset (kFault), a device it needs that is not
+  // open (kDevicesMissing), or nothing (kOk). Decides the node's lifecycle state (lifecycle.h).
+  { const_logic.condition() } -> std::same_as<NodeCondition>;
+  // Decides and writes the outputs for the command in force; nullptr means the node is not
+  // operational (no command in force — never received, the watchdog tripped — or condition() was
+  // not kOk): the node's safe state.
   { logic.update(static_cast<const typename L::Command*>(nullptr), now) } -> std::same_as<void>;
   // Clears latched faults (a reset command took effect).
   { logic.reset() } -> std::same_as<void>;
   // Fills the node-specific State fields and adds what is wrong right now.
   { logic.report(state, errors, now) } -> std::same_as<void>;
-  // Drives the outputs to the safe state at once (shutdown, fatal fault).
+  // Drives the outputs to the safe state at once (the hub stopping).
   { logic.enter_safe_state() } -> std::same_as<void>;
 };
 
@@ -86,6 +92,7 @@ class NodeBase {
   // in it (`took_effect`), or a change held back earlier still waits, and the node's
   // ImmediateStateBudget allows it now; otherwise holds the change back for the next State.
   virtual Status publish_if_due(const Instant& now, bool took_effect) noexcept = 0;
+  // The hub is stopping: drives the outputs safe; the node's lifecycle goes to safe.
   virtual void enter_safe_state() noexcept = 0;
   [[nodiscard]] virtual Health health() const noexcept = 0;
   // First entry of the error list, or empty.
@@ -99,8 +106,13 @@ class NodeBase {
   // `alerts` must outlive the node.
   void watch_alerts(const HubAlerts* alerts) noexcept { alerts_ = alerts; }
 
+  // The node's lifecycle state as of its last step, with the reason and number of transitions.
+  [[nodiscard]] const LifecycleState& lifecycle() const noexcept { return lifecycle_; }
+
  protected:
   const HubAlerts* alerts_ = nullptr;
+  // Created once the hub type has opened (or begun retrying) the node's devices.
+  LifecycleState lifecycle_{Lifecycle::kOpeningDevices, "devices opened; no cycle run yet"};
 };
 
 template <NodeLogic Logic>
@@ -147,7 +159,8 @@ class Node final : public NodeBase {
 
   // The two halves of step(), for layouts that must run something in between (the hub layout
   // distributes the hub command after its own intake and collects node States before its own).
-  // advance(): takes commands, runs the watchdog, reads inputs, runs the logic, writes outputs.
+  // advance(): takes commands, runs the watchdog, reads inputs, decides the lifecycle state,
+  // runs the logic (given the command in force only while operational), writes outputs.
   bool advance(const Instant& now) noexcept {
     const bool took_effect = take_commands(now.mono);
     if (tracker_.check(now.mono) == CommandTracker::Watchdog::kTripped) {
@@ -155,7 +168,9 @@ class Node final : public NodeBase {
                          to_seconds(options_.command_timeout));
     }
     logic_.read_inputs(now.mono);
-    logic_.update(tracker_.in_force() ? &echo() : nullptr, now.mono);
+    transition_to_report_ |= decide_lifecycle();
+    const bool operational = lifecycle_.state() == Lifecycle::kOperational;
+    logic_.update(operational ? &echo() : nullptr, now.mono);
     return took_effect;
   }
   // Rebuilds the State (common fields and the logic's) from what advance() left.
@@ -172,7 +187,13 @@ class Node final : public NodeBase {
       errors_.add("command timeout: no valid command for {:.2f} s (limit {:.2f} s); outputs in safe state",
                   to_seconds(tracker_.since_last_command(now)), to_seconds(options_.command_timeout));
     }
+    const std::size_t first_logic_error = errors_.size();
     logic_.report(state_, errors_, now);
+    if (transition_to_report_) {
+      transition_to_report_ = false;
+      report_transition(first_logic_error);
+    }
+    state_.header.lifecycle = static_cast<std::uint8_t>(lifecycle_.state());
     state_.echo = echo();
     state_.fresh_msg = tracker_.fresh();
     state_.t_plus = static_cast<float>(tracker_.t_plus(now));
@@ -198,7 +219,13 @@ class Node final : public NodeBase {
     return sink_.publish(state_);
   }
 
-  void enter_safe_state() noexcept override { logic_.enter_safe_state(); }
+  void enter_safe_state() noexcept override {
+    stopping_ = true;
+    if (lifecycle_.enter(Lifecycle::kSafe, "hub stopping: outputs driven safe"))
+      report_transition(errors_.size());
+    state_.header.lifecycle = static_cast<std::uint8_t>(lifecycle_.state());
+    logic_.enter_safe_state();
+  }
 
   [[nodiscard]] Health health() const noexcept override {
     if (!errors_.empty()) return tracker_.has_echo() && !tracker_.fresh() ? Health::kStale : Health::kError;
@@ -212,6 +239,39 @@ class Node final : public NodeBase {
   [[nodiscard]] std::uint64_t states_deferred() const noexcept override { return budget_.deferred(); }
 
  private:
+  // Applies the lifecycle rule (lifecycle.h) for this step; returns true on a transition.
+  bool decide_lifecycle() noexcept {
+    const Lifecycle next = node_lifecycle(stopping_, tracker_.in_force(), logic_.condition());
+    switch (next) {
+      case Lifecycle::kOperational:
+        return lifecycle_.enter(next, "command '{}' in force", view(echo().action));
+      case Lifecycle::kFault:
+        return lifecycle_.enter(next, "latched fault, send reset to clear");
+      case Lifecycle::kRecovering:
+        return lifecycle_.enter(next, "a device the node needs is not open, retrying");
+      default:
+        if (stopping_) return lifecycle_.enter(next, "hub stopping: outputs driven safe");
+        if (!tracker_.has_echo()) return lifecycle_.enter(next, "no command received yet");
+        return lifecycle_.enter(next, "command timeout: no valid command for more than {:.3f} s",
+                                to_seconds(options_.command_timeout));
+    }
+  }
+
+  // Completes the reason of the transition just made with the logic's first error (a fault or a
+  // missing device names itself there), then logs it: once per transition.
+  void report_transition(std::size_t first_logic_error) noexcept {
+    const Lifecycle state = lifecycle_.state();
+    if ((state == Lifecycle::kFault || state == Lifecycle::kRecovering) &&
+        errors_.size() > first_logic_error) {
+      lifecycle_.add_detail(errors_.at(first_logic_error));
+    }
+    const auto level = state == Lifecycle::kOperational || state == Lifecycle::kSafe ? spdlog::level::info
+                                                                                     : spdlog::level::warn;
+    options_.log->log(level, "{}: lifecycle {} -> {} (transition {}): {}", options_.name,
+                      lifecycle_name(lifecycle_.previous()), lifecycle_.name(), lifecycle_.transitions(),
+                      lifecycle_.reason());
+  }
+
   // Drains the source; the last valid command wins. Returns true when one took effect.
   bool take_commands(Time now) noexcept {
     bool took_effect = false;
@@ -322,6 +382,8 @@ class Node final : public NodeBase {
   Time rejected_at_{};
   Time logged_at_{};
   bool has_rejection_ = false;
+  bool stopping_ = false;              // enter_safe_state() was called: safe for good
+  bool transition_to_report_ = false;  // advance() changed the lifecycle; rebuild_state() logs it
   std::uint64_t published_ = 0;
   std::uint64_t rejected_ = 0;
 };
