@@ -3,12 +3,17 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <thread>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include "hubrt/dds/discovery.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/dds/ros_names.h"
 
 #include "hub_process.h"
 
@@ -35,8 +40,35 @@ class HubctlPlayInterruptTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove(scenario_); }
 
-  // Starts hubctl play, lets it reach the wait and sends it `sig`.
-  Finished interrupt_with(int sig, const std::vector<std::string>& extra_args = {}) {
+  // Whether a process other than this one reads `ros_topic`, within `patience` (DDS discovery,
+  // looked at every 20 ms).
+  bool someone_reads(std::string_view ros_topic, Duration patience) {
+    auto participant = dds::Participant::create(domain_->config(), "play-interrupt-test");
+    auto dds_name = dds::ros_to_dds_topic(ros_topic);
+    if (!participant || !dds_name) return false;
+    const auto deadline = std::chrono::steady_clock::now() + patience;
+    while (std::chrono::steady_clock::now() < deadline) {
+      auto snapshot = dds::discover(*participant);
+      if (!snapshot) return false;
+      for (const auto& e : snapshot->endpoints) {
+        if (!e.local && e.direction == dds::EndpointDirection::kReader && e.topic_name == *dds_name)
+          return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+
+  // The wait step has begun: play reads the station's State (it makes the reader as the step
+  // starts). 20 s covers start-up and discovery under sanitizers.
+  std::function<bool(ChildProcess&)> in_the_wait() {
+    return [this](ChildProcess&) { return someone_reads("/sim/station/state", seconds(20)); };
+  }
+
+  // Starts hubctl play, waits until `in_progress` says it got where it is to be stopped, and sends
+  // it `sig`.
+  Finished interrupt_with(int sig, const std::function<bool(ChildProcess&)>& in_progress,
+                          const std::vector<std::string>& extra_args = {}) {
     std::vector<std::string> args = {"play", scenario_.string(), "--timeout", "5"};
     args.insert(args.end(), extra_args.begin(), extra_args.end());
     auto child = ChildProcess::start(HUBRT_HUBCTL_PATH, args, domain_->env());
@@ -45,8 +77,7 @@ class HubctlPlayInterruptTest : public ::testing::Test {
     // The description ("play: ...") is printed as the run begins, after the Ctrl-C handler is in
     // place; 20 s covers start-up under sanitizers.
     EXPECT_TRUE(child->wait_for_output("play: ", seconds(20))) << child->stdout_text();
-    // Into the wait step (the outcome is the same if the signal comes before it starts).
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    EXPECT_TRUE(in_progress(*child)) << child->stdout_text();
     EXPECT_TRUE(child->signal(sig));
     auto status = child->wait(seconds(30));
     EXPECT_TRUE(status) << status.error().message;
@@ -59,7 +90,7 @@ class HubctlPlayInterruptTest : public ::testing::Test {
 };
 
 TEST_F(HubctlPlayInterruptTest, CtrlCSaysInterruptedAndExits130) {
-  const Finished f = interrupt_with(SIGINT);
+  const Finished f = interrupt_with(SIGINT, in_the_wait());
   EXPECT_TRUE(f.status.exited_with(130)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("play: interrupted at step 1 of 1 ("), std::string::npos) << f.output;
   EXPECT_NE(f.output.find("  STOP  "), std::string::npos) << f.output;
@@ -68,7 +99,7 @@ TEST_F(HubctlPlayInterruptTest, CtrlCSaysInterruptedAndExits130) {
 }
 
 TEST_F(HubctlPlayInterruptTest, SigtermSaysInterruptedAndExits143) {
-  const Finished f = interrupt_with(SIGTERM);
+  const Finished f = interrupt_with(SIGTERM, in_the_wait());
   EXPECT_TRUE(f.status.exited_with(143)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("play: interrupted at step 1 of 1 ("), std::string::npos) << f.output;
   EXPECT_EQ(f.output.find("not met within"), std::string::npos) << f.output;
@@ -80,7 +111,10 @@ TEST_F(HubctlPlayInterruptTest, RoundsUntilCtrlCEndInterrupted) {
   std::ofstream(scenario_) << "description: a short sleep, round after round\n"
                               "steps:\n"
                               "  - sleep: 0.05\n";
-  const Finished f = interrupt_with(SIGINT, {"--rounds", "0"});
+  // Stopped once the rounds are going round.
+  const Finished f = interrupt_with(
+      SIGINT, [](ChildProcess& play) { return play.wait_for_output("play: round 3", seconds(20)); },
+      {"--rounds", "0"});
   EXPECT_TRUE(f.status.exited_with(130)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("play: interrupted "), std::string::npos) << f.output;
   EXPECT_EQ(f.output.find("PASSED"), std::string::npos) << f.output;

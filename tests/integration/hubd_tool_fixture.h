@@ -5,6 +5,8 @@
 // /sim/input and /sim/fault. Shared by the hubd_tool_*_test.cc files of one test binary.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -12,12 +14,15 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "hubrt/dds/read_condition.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/dds/waitset.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
@@ -49,6 +54,11 @@ inline char* wire(const std::string& text) {
 }
 inline std::string text(const char* s) {
   return s == nullptr ? std::string() : std::string(s);
+}
+// A State's header stamp (the hub's clock when it built the State), in nanoseconds.
+template <class State>
+std::int64_t stamp_ns(const State& s) {
+  return std::int64_t{s.header.stamp.sec} * 1'000'000'000 + s.header.stamp.nanosec;
 }
 template <class Sequence>
 std::string joined(const Sequence& list) {
@@ -89,6 +99,7 @@ struct ToolView {
   std::string controller_alarms;
   std::string selected_program;
   float torque_nm = 0;
+  std::int64_t stamp_ns = 0;  // the hub's clock when it built this State
 };
 struct LiftView {
   bool seen = false;
@@ -104,6 +115,7 @@ struct LiftView {
   bool enabled = false;
   float speed_mm_s = 0;
   std::string fault_text;
+  std::int64_t stamp_ns = 0;  // the hub's clock when it built this State
 };
 struct View {
   ToolView tool;
@@ -129,12 +141,13 @@ inline ToolView view_of(const SmartToolState& s) {
                   s.status_age_ms,
                   text(s.controller_alarms),
                   text(s.selected_program),
-                  s.torque_nm};
+                  s.torque_nm,
+                  stamp_ns(s)};
 }
 inline LiftView view_of(const LiftState& s) {
   return LiftView{true,           s.fresh_msg,  joined(s.error_list), text(s.at),       text(s.target),
                   s.drive_online, s.fault,      s.position_mm,        s.reading_age_ms, s.moving,
-                  s.enabled,      s.speed_mm_s, text(s.fault_text)};
+                  s.enabled,      s.speed_mm_s, text(s.fault_text),   stamp_ns(s)};
 }
 
 // The planner's side of one layout: send both nodes their commands, take States.
@@ -144,7 +157,29 @@ class Link {
   virtual void send(const ToolOrder& tool, const LiftOrder& lift) = 0;
   // Takes what arrived into `view`; true when something did.
   virtual bool take(View& view) = 0;
+  // Blocks until a State is there to be taken, or `timeout` passes.
+  virtual void wait_for_data(Duration timeout) = 0;
   virtual bool wait_for_hub(Duration patience) = 0;
+};
+
+// A WaitSet on the read conditions of a link's readers: waiting for States is waiting on the data.
+class DataWait {
+ public:
+  template <class... Readers>
+  DataWait(const dds::Participant& participant, const Readers&... readers)
+      : waitset_(*dds::WaitSet::create(participant)) {
+    (conditions_.push_back(*dds::ReadCondition::create(readers)), ...);
+    dds::WaitSet::Token token = 0;
+    for (const auto& condition : conditions_) EXPECT_TRUE(waitset_.attach(condition, token++));
+  }
+  void wait(Duration timeout) {
+    std::array<dds::WaitSet::Token, 4> fired{};
+    [[maybe_unused]] const auto n = waitset_.wait(fired, timeout);
+  }
+
+ private:
+  std::vector<dds::ReadCondition> conditions_;
+  dds::WaitSet waitset_;
 };
 
 template <class T>
@@ -168,7 +203,8 @@ class NodeTypeLink final : public Link {
         tool_writer_(*dds::Writer<SmartToolCommand>::create(p, tool_command_.topic)),
         lift_writer_(*dds::Writer<LiftCommand>::create(p, lift_command_.topic)),
         tool_reader_(*dds::Reader<SmartToolState>::create(p, tool_state_.topic)),
-        lift_reader_(*dds::Reader<LiftState>::create(p, lift_state_.topic)) {}
+        lift_reader_(*dds::Reader<LiftState>::create(p, lift_state_.topic)),
+        data_(p, tool_reader_, lift_reader_) {}
 
   void send(const ToolOrder& tool, const LiftOrder& lift) override {
     const std::string tool_type = "smart_tool", tool_name = "tool", lift_type = "lift", lift_name = "lift";
@@ -193,6 +229,7 @@ class NodeTypeLink final : public Link {
     }
     return any;
   }
+  void wait_for_data(Duration timeout) override { data_.wait(timeout); }
   bool wait_for_hub(Duration patience) override {
     return tool_reader_.wait_for_writers(1, patience) && lift_reader_.wait_for_writers(1, patience) &&
            tool_writer_.wait_for_readers(1, patience) && lift_writer_.wait_for_readers(1, patience);
@@ -209,6 +246,7 @@ class NodeTypeLink final : public Link {
   dds::Reader<LiftState> lift_reader_;
   dds::Sample<SmartToolState> tool_sample_;
   dds::Sample<LiftState> lift_sample_;
+  DataWait data_;  // after the readers: destroyed before them
 };
 
 // Hub layout: /tool_ecu/command and /tool_ecu/state, one field per node.
@@ -218,7 +256,8 @@ class HubLink final : public Link {
       : command_(Endpoint<ToolEcuCommand>::create(p, "/tool_ecu/command")),
         state_(Endpoint<ToolEcuState>::create(p, "/tool_ecu/state")),
         writer_(*dds::Writer<ToolEcuCommand>::create(p, command_.topic)),
-        reader_(*dds::Reader<ToolEcuState>::create(p, state_.topic)) {}
+        reader_(*dds::Reader<ToolEcuState>::create(p, state_.topic)),
+        data_(p, reader_) {}
 
   void send(const ToolOrder& tool, const LiftOrder& lift) override {
     const std::string hub_type = "tool_ecu", hub_name = "tool_ecu", apply = "apply", empty;
@@ -247,6 +286,7 @@ class HubLink final : public Link {
     }
     return any;
   }
+  void wait_for_data(Duration timeout) override { data_.wait(timeout); }
   bool wait_for_hub(Duration patience) override {
     return reader_.wait_for_writers(1, patience) && writer_.wait_for_readers(1, patience);
   }
@@ -258,6 +298,7 @@ class HubLink final : public Link {
   dds::Reader<ToolEcuState> reader_;
   dds::Sample<ToolEcuState> sample_;
   std::string hub_errors_;
+  DataWait data_;  // after the reader: destroyed before it
 };
 
 enum class Layout { kNodeType, kHub };
@@ -388,14 +429,28 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
     ASSERT_TRUE(sim_fault_writer_->write(message).is_ok());
   }
 
-  // Takes States until `predicate` holds for the latest View; false after `timeout`.
+  // Takes States until `predicate` holds for the latest View; false after `timeout`. Between
+  // takes it waits on the readers' data, not on a clock.
   bool wait_for(const std::function<bool(const View&)>& predicate, Duration timeout = kPatience) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
+    for (auto now = std::chrono::steady_clock::now(); now < deadline;
+         now = std::chrono::steady_clock::now()) {
       if (link_->take(view_) && view_.tool.seen && view_.lift.seen && predicate(view_)) return true;
-      std::this_thread::sleep_for(milliseconds(5));
+      link_->wait_for_data(deadline - now);
     }
     return false;
+  }
+  // Takes States until the hub's own clock (both nodes' State stamps) has moved on by `span` from
+  // the latest State, calling `each` on every View on the way; false if that took longer than
+  // kPatience. For "it stays so while the hub runs for a while": the hub says how long it ran, so a
+  // slow machine only makes the test take longer, never makes it check less.
+  bool watch_for(Duration span, const std::function<void(const View&)>& each) {
+    if (!wait_for([](const View&) { return true; })) return false;
+    const std::int64_t until = std::min(view_.tool.stamp_ns, view_.lift.stamp_ns) + span.count();
+    return wait_for([&](const View& v) {
+      each(v);
+      return v.tool.stamp_ns >= until && v.lift.stamp_ns >= until;
+    });
   }
   std::string describe() const {
     return fmt::format(

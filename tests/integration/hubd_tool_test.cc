@@ -19,14 +19,12 @@ TEST_P(HubdToolTest, TightensEachRunIdOnceMovesTheLiftAndObeysTheRspInterlock) {
   EXPECT_EQ(view_.tool.errors, "");
   EXPECT_EQ(view_.lift.errors, "");
 
-  // The planner repeats "tighten 1" for a while: still one tightening.
-  const auto until = std::chrono::steady_clock::now() + seconds(1);
-  while (std::chrono::steady_clock::now() < until) {
-    link_->take(view_);
-    EXPECT_EQ(view_.tool.result_counter, 1u);
-    EXPECT_EQ(view_.tool.output, "idle");
-    std::this_thread::sleep_for(milliseconds(20));
-  }
+  // The planner repeats "tighten 1" (every 100 ms) while the hub runs for a second: still one
+  // tightening, in every State of that second.
+  ASSERT_TRUE(watch_for(seconds(1), [](const View& v) {
+    EXPECT_EQ(v.tool.result_counter, 1u);
+    EXPECT_EQ(v.tool.output, "idle");
+  })) << describe();
 
   // The RSP ECU goes silent: its State is lost, which counts as "not allowed".
   rsp_alive(false);
@@ -95,12 +93,11 @@ TEST_P(HubdToolTest, WhenThePlannerStopsTheToolGoesIdleAndTheLiftStops) {
       << describe();
   EXPECT_NE(view_.tool.errors.find("command timeout"), std::string::npos) << describe();
   const float held = view_.lift.position_mm;
-  ASSERT_TRUE(wait_for([](const View&) { return true; }));
-  std::this_thread::sleep_for(milliseconds(500));
-  ASSERT_TRUE(wait_for([](const View&) { return true; }));
-  // Unstopped it would have moved 50 mm in these 500 ms (100 mm/s); a few mm allow for the one
-  // exchange of the drive's worker that may have been under way when the State was built.
-  EXPECT_NEAR(view_.lift.position_mm, held, 5.0) << "stopped";
+  // Unstopped it would move 50 mm while the hub runs for 500 ms (100 mm/s); a few mm allow for the
+  // one exchange of the drive's worker that may have been under way when the State was built.
+  ASSERT_TRUE(watch_for(milliseconds(500), [held](const View& v) {
+    EXPECT_NEAR(v.lift.position_mm, held, 5.0) << "stopped";
+  })) << describe();
 }
 
 INSTANTIATE_TEST_SUITE_P(BothLayouts, HubdToolTest, ::testing::Values(Layout::kNodeType, Layout::kHub),

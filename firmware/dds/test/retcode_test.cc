@@ -10,20 +10,6 @@ TEST(Retcode, NonNegativeValuesAreSuccess) {
   EXPECT_TRUE(to_status(12345).is_ok());  // entity handles and counts share the type
 }
 
-TEST(Retcode, CodesMapToMeaningfulErrorCodes) {
-  EXPECT_EQ(to_error_code(DDS_RETCODE_BAD_PARAMETER), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_INCONSISTENT_POLICY), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_PRECONDITION_NOT_MET), ErrorCode::kFailedPrecondition);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_ILLEGAL_OPERATION), ErrorCode::kFailedPrecondition);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_ALREADY_DELETED), ErrorCode::kFailedPrecondition);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_TIMEOUT), ErrorCode::kTimeout);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_NOT_ALLOWED_BY_SECURITY), ErrorCode::kPermissionDenied);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_OUT_OF_RESOURCES), ErrorCode::kUnavailable);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_NOT_FOUND), ErrorCode::kNotFound);
-  EXPECT_EQ(to_error_code(DDS_RETCODE_ERROR), ErrorCode::kIo);
-  EXPECT_EQ(to_error_code(-999), ErrorCode::kIo);
-}
-
 TEST(Retcode, NamesAreTheCycloneMacroNames) {
   EXPECT_EQ(retcode_name(DDS_RETCODE_BAD_PARAMETER), "DDS_RETCODE_BAD_PARAMETER");
   EXPECT_EQ(retcode_name(DDS_RETCODE_TIMEOUT), "DDS_RETCODE_TIMEOUT");

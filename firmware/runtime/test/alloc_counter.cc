@@ -4,15 +4,14 @@
 #include <cstddef>
 #include <cstdint>
 
-// glibc's own implementations, reachable under these names when the executable defines malloc.
-// NOLINTBEGIN(bugprone-reserved-identifier,cppcoreguidelines-no-malloc): glibc's names.
-extern "C" {
-void* __libc_malloc(std::size_t size) noexcept;
-void* __libc_calloc(std::size_t n, std::size_t size) noexcept;
-void* __libc_realloc(void* ptr, std::size_t size) noexcept;
-void* __libc_memalign(std::size_t alignment, std::size_t size) noexcept;
-void __libc_free(void* ptr) noexcept;
-}
+// GCC defines __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__; clang answers __has_feature.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define HUBRT_ALLOC_COUNTER_HOOKS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define HUBRT_ALLOC_COUNTER_HOOKS 1
+#endif
+#endif
 
 namespace {
 // Initial-exec TLS and a lock-free atomic: counting never allocates, which matters inside malloc.
@@ -24,6 +23,50 @@ inline void note() noexcept {
   g_count.fetch_add(1, std::memory_order_relaxed);
 }
 }  // namespace
+
+#ifdef HUBRT_ALLOC_COUNTER_HOOKS
+
+#if __has_include(<sanitizer/allocator_interface.h>)
+#include <sanitizer/allocator_interface.h>
+#else
+// GCC 12 ships the sanitizer runtimes (libasan, libtsan export this function) but not their
+// interface headers; the declaration as in compiler-rt's include/sanitizer/allocator_interface.h.
+// NOLINTNEXTLINE(bugprone-reserved-identifier): the sanitizers' name.
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+#endif
+
+namespace {
+// The sanitizer's allocator calls the malloc hook for every block it hands out (malloc, calloc,
+// realloc, the aligned variants, operator new): compiler-rt sanitizer_common RunMallocHooks, called
+// from asan_allocator.cpp Allocate() and tsan_mman.cpp invoke_malloc_hook().
+void on_malloc(const volatile void* /*ptr*/, std::size_t /*size*/) {
+  note();
+}
+void on_free(const volatile void* /*ptr*/) {}
+
+// Installed before main(), so that nothing the test measures runs before it.
+[[maybe_unused]] const int g_installed = __sanitizer_install_malloc_and_free_hooks(on_malloc, on_free);
+}  // namespace
+
+namespace hubrt::testing {
+const char* allocation_counting_method() noexcept {
+  return "sanitizer hooks";
+}
+}  // namespace hubrt::testing
+
+#else
+
+// glibc's own implementations, reachable under these names when the executable defines malloc.
+// NOLINTBEGIN(bugprone-reserved-identifier,cppcoreguidelines-no-malloc): glibc's names.
+extern "C" {
+void* __libc_malloc(std::size_t size) noexcept;
+void* __libc_calloc(std::size_t n, std::size_t size) noexcept;
+void* __libc_realloc(void* ptr, std::size_t size) noexcept;
+void* __libc_memalign(std::size_t alignment, std::size_t size) noexcept;
+void __libc_free(void* ptr) noexcept;
+}
 
 extern "C" {
 void* malloc(std::size_t size) noexcept {
@@ -58,6 +101,14 @@ void free(void* ptr) noexcept {
 }
 }
 // NOLINTEND(bugprone-reserved-identifier,cppcoreguidelines-no-malloc)
+
+namespace hubrt::testing {
+const char* allocation_counting_method() noexcept {
+  return "interposed malloc";
+}
+}  // namespace hubrt::testing
+
+#endif
 
 namespace hubrt::testing {
 

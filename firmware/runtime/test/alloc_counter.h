@@ -1,7 +1,10 @@
-// Counts heap allocations by interposing malloc and friends (operator new ends in malloc): per
-// thread and in the whole process. The one counter of the project's allocation tests and of the
-// cycle benchmark: link target `hubrt_alloc_counter`, which compiles it into the executable.
-// Only for builds without a sanitizer (sanitizers interpose the same functions).
+// Counts heap allocations: per thread and in the whole process. The one counter of the project's
+// allocation tests and of the cycle benchmark: link target `hubrt_alloc_counter`, which compiles
+// it into the executable. Two ways to see every allocation, chosen when compiling:
+// - in a sanitizer build (ASan, TSan), the sanitizer's allocation hooks
+//   (__sanitizer_install_malloc_and_free_hooks, <sanitizer/allocator_interface.h>): the sanitizer
+//   owns malloc there and runs the hooks on every allocation, malloc and operator new alike;
+// - otherwise, by interposing malloc and friends (operator new ends in malloc).
 #pragma once
 
 #include <cstddef>
@@ -13,6 +16,8 @@ namespace hubrt::testing {
 std::uint64_t thread_allocations() noexcept;
 // Allocations made so far by every thread of the process (DDS's own threads included).
 std::uint64_t process_allocations() noexcept;
+// How this build counts: "sanitizer hooks" or "interposed malloc".
+const char* allocation_counting_method() noexcept;
 
 // Allocations by the calling thread while the scope lives; other threads are not counted.
 class AllocationScope {

@@ -175,6 +175,43 @@ TEST(CycleRunner, StopsOnEveryTerminatingSignalThatCanBeBlocked) {
   }
 }
 
+// The system timer's own contract, without waiting on real time: a deadline already past ends the
+// wait at once (TFD_TIMER_ABSTIME), and a wake or stop ends a wait for a deadline an hour away.
+TEST(SystemCycleTimer, APastDeadlineEndsTheWaitAtOnce) {
+  auto timer = SystemCycleTimer::create();
+  ASSERT_TRUE(timer) << timer.error().message;
+  const Time now = SystemClock().now().mono;
+  auto events = (*timer)->wait_until(now - milliseconds(1));
+  ASSERT_TRUE(events) << events.error().message;
+  EXPECT_TRUE(events->deadline_reached);
+  EXPECT_FALSE(events->woken);
+  EXPECT_FALSE(events->stop_requested);
+  // Fired once: the same deadline, armed again, fires again (one-shot timers re-arm per wait).
+  events = (*timer)->wait_until(now - milliseconds(1));
+  ASSERT_TRUE(events);
+  EXPECT_TRUE(events->deadline_reached);
+}
+
+TEST(SystemCycleTimer, WakesAndStopRequestsEndAWaitForAFarDeadline) {
+  auto timer = SystemCycleTimer::create();
+  ASSERT_TRUE(timer) << timer.error().message;
+  const Time far = SystemClock().now().mono + std::chrono::hours(1);
+  (*timer)->wake();
+  (*timer)->wake();
+  auto events = (*timer)->wait_until(far);
+  ASSERT_TRUE(events) << events.error().message;
+  EXPECT_TRUE(events->woken);
+  EXPECT_FALSE(events->deadline_reached);
+  EXPECT_FALSE(events->stop_requested);
+  (*timer)->wake();
+  (*timer)->request_stop();
+  events = (*timer)->wait_until(far);
+  ASSERT_TRUE(events);
+  EXPECT_TRUE(events->stop_requested);
+  EXPECT_TRUE(events->woken);
+  EXPECT_FALSE(events->deadline_reached);
+}
+
 // SIGPIPE is the caller's to ignore (a write then fails with EPIPE); faults stay deliverable to a
 // crash handler (blocked, they would kill the process without running it).
 TEST(CycleRunner, LeavesSigpipeAndFaultsOutOfTheStopSignals) {

@@ -1,28 +1,33 @@
-// Runs a Hub in real time: periodic cycles on absolute deadlines of CLOCK_MONOTONIC (a timerfd, so
-// lateness never accumulates into drift), command steps as soon as a transport calls wake(), and a
-// clean stop on every signal whose default action ends the process and that can be blocked
-// (stop_signals(): read from a signalfd, so no handler runs inside the cycle and the caller gets
-// to drive its outputs safe before it exits).
+// Runs a Hub: periodic cycles on absolute deadlines (deadline k = start + k·period, so lateness
+// never accumulates into drift), command steps as soon as a transport calls wake(), and a clean
+// stop on request or on a stop signal (so no handler runs inside the cycle and the caller gets to
+// drive its outputs safe before it exits). The waiting itself is a CycleTimer's: the system one
+// (timerfd/eventfd/signalfd, see system_cycle_timer.h) in hubd, ManualCycleTimer in tests.
 #pragma once
 
-#include <csignal>
 #include <functional>
+#include <memory>
 
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
+#include "hubrt/runtime/cycle_timer.h"
 #include "hubrt/runtime/hub.h"
+#include "hubrt/runtime/system_cycle_timer.h"
 
 namespace hubrt::runtime {
 
-// Wakes a CycleRunner from any thread. Async-signal-safe and allocation-free (one write(2)).
+// Wakes a CycleRunner from any thread. Async-signal-safe and allocation-free (the system timer's
+// wake is one write(2)). Valid while the runner it came from lives.
 class Waker {
  public:
   Waker() = default;
-  explicit Waker(int event_fd) noexcept : fd_(event_fd) {}
-  void wake() const noexcept;
+  explicit Waker(const CycleTimer* timer) noexcept : timer_(timer) {}
+  void wake() const noexcept {
+    if (timer_ != nullptr) timer_->wake();
+  }
 
  private:
-  int fd_ = -1;
+  const CycleTimer* timer_ = nullptr;
 };
 
 struct RunHooks {
@@ -32,47 +37,37 @@ struct RunHooks {
 
 enum class StopReason : std::uint8_t { kSignal, kRequested };
 
-// The signals CycleRunner turns into a clean stop: every signal whose default action terminates
-// the process (signal(7)) and that another process or the kernel sends asynchronously — SIGHUP,
-// SIGINT, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGTERM, SIGSTKFLT, SIGVTALRM, SIGPROF, SIGIO,
-// SIGPWR, SIGXCPU, SIGXFSZ and the real-time signals SIGRTMIN..SIGRTMAX. Left out on purpose:
-// SIGKILL/SIGSTOP (cannot be caught), SIGPIPE (a program that must not die of a closed pipe
-// ignores it, so that the write fails with EPIPE instead), and the faults a thread raises on itself
-// (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS): a blocked synchronous fault is
-// fatal at once without running any handler (kernel force_sig_fault), so they stay unblocked for a
-// crash handler.
-sigset_t stop_signals() noexcept;
-
 class CycleRunner {
  public:
-  // Blocks stop_signals() for the calling thread — call it before starting any other thread
-  // (DDS participants) so that they inherit the mask, or such a signal could be delivered to a
-  // thread that still has its default action, ending the process at once — and opens the timer,
-  // event and signal fds.
+  // The real-time runner over SystemCycleTimer::create() — which blocks stop_signals() for the
+  // calling thread: call it before starting any other thread (DDS participants).
   // Errors: kIo with the failing system call named.
   static Expected<CycleRunner> create();
-  CycleRunner(CycleRunner&& other) noexcept;
+  // A runner over `timer` (e.g. a ManualCycleTimer). Precondition: timer is not null.
+  explicit CycleRunner(std::unique_ptr<CycleTimer> timer) noexcept;
+  CycleRunner(CycleRunner&& other) noexcept = default;
   CycleRunner& operator=(CycleRunner&&) = delete;
   CycleRunner(const CycleRunner&) = delete;
-  ~CycleRunner();
+  ~CycleRunner() = default;
 
-  [[nodiscard]] Waker waker() const noexcept { return Waker(event_fd_); }
+  [[nodiscard]] Waker waker() const noexcept { return Waker(timer_.get()); }
   // Asks run() to return after the current step. Thread-safe.
-  void request_stop() const noexcept;
+  void request_stop() const noexcept { timer_->request_stop(); }
 
-  // Runs cycles every hub.options().period until a signal or request_stop(). The first cycle runs
-  // at once. Each periodic deadline missed while a cycle ran late counts as an overrun in
-  // hub.stats(). Errors: kInvalidArgument for a non-positive period; kIo for a failing system call.
+  // Runs cycles every hub.options().period until a stop signal or request_stop(). The first cycle
+  // runs at once (at start = clock.now()); cycle k is due at start + k·period whatever the earlier
+  // cycles took. When a step ran past one or more further deadlines, those deadlines count as
+  // overruns in hub.stats() and ONE cycle runs at once, then the schedule goes on at the next
+  // deadline still ahead (no burst of catch-up cycles). A wake runs a command step at
+  // clock.now() between cycles. `clock` reads the time the timer waits on (SystemClock for
+  // create(), the ManualClock of a ManualCycleTimer).
+  // Errors: kInvalidArgument for a non-positive period; kIo for a failing system call.
   Expected<StopReason> run(Hub& hub, const Clock& clock, const RunHooks& hooks = {});
   // The signal that ended the last run() (one of stop_signals()), 0 if none did.
   [[nodiscard]] int last_signal() const noexcept { return last_signal_; }
 
  private:
-  CycleRunner(int timer_fd, int event_fd, int signal_fd) noexcept;
-
-  int timer_fd_ = -1;
-  int event_fd_ = -1;
-  int signal_fd_ = -1;
+  std::unique_ptr<CycleTimer> timer_;
   int last_signal_ = 0;
 };
 
