@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/assembly/topic_names.h"
+#include "hubrt/dds/oversize_samples.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -81,7 +82,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   const double period_ms = to_seconds(hub_.options().period) * 1e3;
   s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
   std::size_t n = 0;
+  // At most 14 keys below; the guard keeps a future 17th from writing past the storage.
   const auto add = [&](const char* key, auto value) {
+    if (n == kMaxValues) return;
     s.values[n].format("{}", value);
     set_value(0, n, key, s.values[n]);
     ++n;
@@ -102,6 +105,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
   if (log_lines_dropped_ != nullptr)
     add("log_lines_dropped", log_lines_dropped_->load(std::memory_order_relaxed));
+  // Samples larger than dds::kMaxSampleSizeBytes that Cyclone discarded in this process (a hubd
+  // is one hub), when the process counts them (hubd does: dds/oversize_samples.h).
+  if (dds::oversize_samples_counted()) add("oversize_samples_dropped", dds::oversize_samples_dropped());
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);
