@@ -284,7 +284,15 @@ class OversizeCommandTest : public ::testing::Test {
   bool last_fresh_ = false;
 };
 
-TEST_F(OversizeCommandTest, CostNoMemoryStopNoHeartbeatAndAreCountedInDiagnostics) {
+// The two binaries need distinct test names: ctest knows tests by name, and labels them by it.
+#ifdef HUBRT_OVERSIZE_FULL
+using OversizeCommandFullTest = OversizeCommandTest;
+#define HUBRT_OVERSIZE_SUITE OversizeCommandFullTest
+#else
+#define HUBRT_OVERSIZE_SUITE OversizeCommandTest
+#endif
+
+TEST_F(HUBRT_OVERSIZE_SUITE, CostNoMemoryStopNoHeartbeatAndAreCountedInDiagnostics) {
   const pid_t pid = hub_->process().pid();
   // Warm-up: the paths the oversize commands take (receive buffers, the discard warning), a
   // normal command, and a few seconds of running.
