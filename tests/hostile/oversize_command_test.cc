@@ -62,7 +62,7 @@ constexpr double kPeriodS = 0.1;  // dock_ecu.yaml: rate_hz 10
 constexpr double kMaxGapS = 2 * kPeriodS + 0.3;
 // RSS may move by less than 1 MB (issue 11): the receive buffers and malloc arenas are warm.
 // Measured: a release hubd +4 kB through the full 300 commands, an ASan hubd +0.2 MB through the
-// default 113; before the bound +127 MB (release, 17 -> 144 MB). Only an ASan hubd through the
+// default 113; before the bound +155 MB (release, 16 -> 172 MB; ASan +69 MB). Only an ASan hubd through the
 // full 300 moves more, +1.9 MB (ASan's own allocator: its size-class regions grow with the
 // receive threads' malloc/free traffic where glibc reuses the same memory): 4 MB there.
 #if defined(__SANITIZE_ADDRESS__) && defined(HUBRT_OVERSIZE_FULL)
