@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/dds/oversize_samples.h"
 #include "hubrt/hub_api/topic_names.h"
 
 namespace hubrt::assembly {
@@ -78,9 +79,11 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   s.name.format("{}: cycle", hub_.options().name);
   const double period_ms = to_seconds(hub_.options().period) * 1e3;
   s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
-  // At most 15 values (kMaxValues is 16): 3 always, 12 more when every option is given.
+  // At most 16 values (kMaxValues is 20): 11 always, 5 more when every option is given; the guard
+  // keeps a key added later from writing past the storage.
   std::size_t n = 0;
   const auto add = [&](const char* key, auto value) {
+    if (n == kMaxValues) return;
     s.values[n].format("{}", value);
     set_value(0, n, key, s.values[n].c_str());
     ++n;
@@ -104,6 +107,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
   if (log_lines_dropped_ != nullptr)
     add("log_lines_dropped", log_lines_dropped_->load(std::memory_order_relaxed));
+  // Samples larger than dds::kMaxSampleSizeBytes that Cyclone discarded in this process (a hubd
+  // is one hub), when the process counts them (hubd does: dds/oversize_samples.h).
+  if (dds::oversize_samples_counted()) add("oversize_samples_dropped", dds::oversize_samples_dropped());
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);

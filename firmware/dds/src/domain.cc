@@ -2,9 +2,25 @@
 
 #include <charconv>
 #include <cstdlib>
+#include <string>
 #include <string_view>
 
 namespace hubrt::dds {
+namespace {
+
+std::string max_sample_size_element() {
+  // Internal/MaxSampleSize (Cyclone 0.10.2 src/core/ddsi/include/dds/ddsi/ddsi_cfgelems.h,
+  // default 2147483647 B): src/core/ddsi/src/q_receive.c, handle_Data and handle_DataFrag, compare
+  // the sample size a DATA or DATA_FRAG submessage announces (for a fragment: the sampleSize of
+  // its header, valid_DataFrag) with it before anything else is done with the payload, and
+  // drop_oversize() discards it: no defragmentation buffer, no deserialisation, the receive
+  // buffer's message is released when the datagram is done. So a peer can no longer make us
+  // reassemble and hold a 64 MB string; every fragment of it costs one datagram's time. The same
+  // bound applies to what we write (q_transmit.c, write_sample_eot: larger samples are not sent).
+  return "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleSizeBytes) + " B</MaxSampleSize></Internal>";
+}
+
+}  // namespace
 
 std::string loopback_config_xml() {
   return "<CycloneDDS><Domain id=\"any\">"
@@ -19,8 +35,28 @@ std::string loopback_config_xml() {
          // nn_rbuf_release). With the default 1 MiB buffer a hub's RSS climbs ~900 kB per
          // receive thread with discovery and command traffic, then falls back: 3 kB per planner
          // reconnect for ~300 reconnects (docs/soak.md). 192 KiB keeps that tooth at ~64 kB.
-         "<Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>"
-         "</Domain></CycloneDDS>";
+         "<Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>" +
+         max_sample_size_element() + "</Domain></CycloneDDS>";
+}
+
+std::string sample_bounds_config_xml() {
+  return "<CycloneDDS><Domain id=\"any\">" + max_sample_size_element() + "</Domain></CycloneDDS>";
+}
+
+std::string with_sample_bounds(std::string_view cyclone_xml) {
+  std::string sources = sample_bounds_config_xml();
+  std::string_view rest = cyclone_xml;
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): documented as not to be raced with setenv().
+  const char* uri = rest.empty() ? std::getenv(kCycloneUriEnvVar) : nullptr;
+  if (uri != nullptr) rest = uri;
+  if (!rest.empty()) {
+    // Cyclone reads a comma-separated list of sources in order, a later value of a setting
+    // replacing an earlier one (ddsi_config.c: ddsi_config_init, do_update), so a station's
+    // configuration may still set MaxSampleSize itself.
+    sources += ',';
+    sources += rest;
+  }
+  return sources;
 }
 
 Expected<DomainConfig> domain_config_from_environment() {

@@ -60,6 +60,41 @@ TEST(LoopbackConfig, BoundsTheReceiveBufferSawTooth) {
             std::string::npos);
 }
 
+// Cyclone discards samples larger than Internal/MaxSampleSize on their first datagram
+// (q_receive.c, drop_oversize): every configuration hubrt writes carries the bound.
+TEST(LoopbackConfig, BoundsTheSampleSize) {
+  EXPECT_EQ(kMaxSampleSizeBytes, 65536u);
+  EXPECT_NE(loopback_config_xml().find("<Internal><MaxSampleSize>65536 B</MaxSampleSize></Internal>"),
+            std::string::npos);
+  EXPECT_EQ(sample_bounds_config_xml(),
+            "<CycloneDDS><Domain id=\"any\"><Internal><MaxSampleSize>65536 B</MaxSampleSize></Internal>"
+            "</Domain></CycloneDDS>");
+}
+
+// hubd creates its domain with the bound first and the station's configuration after it (a later
+// source overrides an earlier one in Cyclone, so a station may still choose another bound).
+class SampleBounds : public ::testing::Test {
+ protected:
+  void TearDown() override { ::unsetenv(kCycloneUriEnvVar); }
+};
+
+TEST_F(SampleBounds, GoInFrontOfTheGivenConfiguration) {
+  ASSERT_EQ(::setenv(kCycloneUriEnvVar, "file:///ignored.xml", 1), 0);
+  EXPECT_EQ(with_sample_bounds("file:///etc/hubrt/cyclonedds.xml"),
+            sample_bounds_config_xml() + ",file:///etc/hubrt/cyclonedds.xml");
+}
+
+TEST_F(SampleBounds, GoInFrontOfCycloneddsUriWhenNoConfigurationIsGiven) {
+  ASSERT_EQ(::setenv(kCycloneUriEnvVar, "<CycloneDDS><Domain><General/></Domain></CycloneDDS>", 1), 0);
+  EXPECT_EQ(with_sample_bounds(""),
+            sample_bounds_config_xml() + ",<CycloneDDS><Domain><General/></Domain></CycloneDDS>");
+}
+
+TEST_F(SampleBounds, StandAloneWithoutAnyConfiguration) {
+  ::unsetenv(kCycloneUriEnvVar);
+  EXPECT_EQ(with_sample_bounds(""), sample_bounds_config_xml());
+}
+
 // NOLINTEND(concurrency-mt-unsafe)
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "hubrt/assembly/hub_assembly.h"
 #include "hubrt/base/exit_codes.h"
 #include "hubrt/dds/domain.h"
+#include "hubrt/dds/oversize_samples.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/runtime/cycle_runner.h"
 
@@ -65,6 +66,9 @@ Expected<dds::DomainConfig> domain_config(const Options& options) {
   if (options.domain) config->domain_id = *options.domain;
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) config->cyclone_xml = options.dds_config;
+  // Whatever the configuration, a peer cannot make this hub receive and hold samples larger than
+  // dds::kMaxSampleSizeBytes (README.md, "Hostile input").
+  config->cyclone_xml = dds::with_sample_bounds(config->cyclone_xml);
   return config;
 }
 
@@ -107,6 +111,8 @@ int run(const Options& options) {
   if (!backend) return fail(backend.error().message, kExitConfig);
   if (options.safe_outputs) return run_safe_outputs({*board_file, *hub_file, *backend}, **logger);
   install_crash_handlers();
+  // Before the first participant: /diagnostics counts the oversize samples Cyclone drops.
+  dds::count_oversize_samples();
   auto domain = domain_config(options);
   if (!domain) return fail(domain.error().message, kExitConfig);
 
@@ -202,7 +208,8 @@ int main(int argc, char** argv) {
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
   app.add_option("--dds-config", options.dds_config,
-                 "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI)");
+                 "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI), read after hubd's own "
+                 "bound on sample sizes (Internal/MaxSampleSize 65536 B)");
   app.add_flag("--loopback", options.loopback,
                "Keep DDS on the loopback interface (single-machine simulation)");
   app.add_option("--name", options.name, "Instance name, overriding the hub file's (unique on the domain)");

@@ -26,7 +26,7 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 16;
+  static constexpr std::size_t kMaxValues = 20;
 
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as

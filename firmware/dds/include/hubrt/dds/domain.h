@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "hubrt/base/status.h"
 
@@ -26,10 +27,32 @@ inline constexpr std::uint32_t kMaxDomainId = 232;
 
 // The configuration that keeps a participant on the loopback interface: interface "lo", no
 // multicast, unicast discovery to 127.0.0.1 with automatic participant indices (up to 32
-// participants on the host; Cyclone's default of 9 caps a unicast host at 10), and a 192 KiB
-// receive buffer instead of 1 MiB (bounds the RSS saw-tooth of incoming traffic: docs/soak.md).
+// participants on the host; Cyclone's default of 9 caps a unicast host at 10), a 192 KiB
+// receive buffer instead of 1 MiB (bounds the RSS saw-tooth of incoming traffic: docs/soak.md),
+// and sample_bounds_config_xml().
 // Valid for any domain id. Used by tests and by single-machine demos. Thread-safe.
 std::string loopback_config_xml();
+
+// The largest serialised sample a hubrt process sends or accepts. The largest legitimate one is
+// a hub-layout State with every error list full (Tool ECU: three lists of 16 entries of up to 191
+// bytes, ~9.4 KiB, ~12 KiB in all) or a /diagnostics array (~1.7 KiB per node): 64 KiB leaves
+// more than 5x that. README.md, "Hostile input".
+inline constexpr std::uint32_t kMaxSampleSizeBytes = 64 * 1024;
+
+// A Cyclone XML source that sets Internal/MaxSampleSize to kMaxSampleSizeBytes: Cyclone then
+// discards larger incoming samples on their first datagram, before reassembling them, with a
+// warning that dds/oversize_samples.h counts. Thread-safe.
+std::string sample_bounds_config_xml();
+
+// sample_bounds_config_xml() followed by `cyclone_xml`, or when that is empty by the value of
+// $CYCLONEDDS_URI (nothing when unset): the configuration hubd creates its domain with, so that
+// every hub is bounded whatever the station's configuration says, unless that configuration sets
+// MaxSampleSize itself (a later source overrides an earlier one).
+// Thread-safety: reads the environment; do not call while another thread calls setenv().
+std::string with_sample_bounds(std::string_view cyclone_xml);
+
+// The environment variable from which Cyclone reads its configuration.
+inline constexpr const char* kCycloneUriEnvVar = "CYCLONEDDS_URI";
 
 // The environment variable that carries the domain id to hubd and hubctl, as in ROS 2.
 inline constexpr const char* kDomainIdEnvVar = "ROS_DOMAIN_ID";

@@ -1,0 +1,50 @@
+#include "hubrt/dds/oversize_samples.h"
+
+#include <atomic>
+#include <cstdio>
+
+#include <dds/dds.h>
+
+namespace hubrt::dds {
+namespace {
+
+// The start of both discard warnings of drop_oversize() in Cyclone 0.10.2
+// src/core/ddsi/src/q_receive.c.
+constexpr std::string_view kDropPrefix = "dropping oversize (";
+
+std::atomic<std::uint64_t> g_dropped{0};
+std::atomic<bool> g_installed{false};
+
+// dds_log_write_fn_t. `data->message` is preceded by `data->hdrsize` bytes of header and
+// followed by a newline: what Cyclone's default sink (src/ddsrt/src/log.c, default_sink) writes.
+void count_and_forward(void* /*arg*/, const dds_log_data_t* data) {
+  if ((data->priority & DDS_LC_WARNING) != 0 && is_oversize_drop_message({data->message, data->size}))
+    g_dropped.fetch_add(1, std::memory_order_relaxed);
+  (void)std::fwrite(data->message - data->hdrsize, 1, data->hdrsize + data->size + 1, stderr);
+  (void)std::fflush(stderr);
+}
+
+}  // namespace
+
+bool is_oversize_drop_message(std::string_view message) noexcept {
+  return message.starts_with(kDropPrefix);
+}
+
+void count_oversize_samples() noexcept {
+  if (g_installed.exchange(true, std::memory_order_acq_rel)) return;
+  // dds_set_log_sink takes Cyclone's log lock for writing, so no thread still uses the old sink
+  // when it returns (src/ddsrt/src/log.c, set_log_sink).
+  dds_set_log_sink(&count_and_forward, nullptr);
+  // Warnings are in Cyclone's default log mask; make sure they stay there.
+  dds_set_log_mask(dds_get_log_mask() | DDS_LC_WARNING);
+}
+
+bool oversize_samples_counted() noexcept {
+  return g_installed.load(std::memory_order_acquire);
+}
+
+std::uint64_t oversize_samples_dropped() noexcept {
+  return g_dropped.load(std::memory_order_relaxed);
+}
+
+}  // namespace hubrt::dds
