@@ -34,7 +34,13 @@ void RunLines::drive(RunOutput output, Time now) noexcept {
   if (!forward_line.output.driven() || reverse_line.output.driven() == reverse) {
     write(reverse_line, reverse, now);
   }
-  if (reverse_line.output.driven() == reverse) write(forward_line, run, now);
+  if (reverse_line.output.driven() == reverse) {
+    write(forward_line, run, now);
+  } else if (forward_line.output.driven()) {
+    // The direction line could not be set (its chip went away: it drives nothing now, which the
+    // tool reads as "forward"): the run enable must not stay on with the wrong direction.
+    write(forward_line, false, now);
+  }
   update_shown();
 }
 
