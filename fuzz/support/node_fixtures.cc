@@ -1,8 +1,11 @@
 #include "node_fixtures.h"
 
+#include "dock_ecu_hub_type.h"
 #include "node_harness.h"
+#include "rsp_ecu_hub_type.h"
 #include "scripted_devices.h"
 #include "station_files.h"
+#include "tool_ecu_hub_type.h"
 
 namespace hubrt::fuzz {
 namespace {
@@ -36,8 +39,9 @@ const std::string& node_name(std::string_view hub, std::string_view type) {
 dock_ecu::DockLogic make_dock_logic() {
   static const auto slots =
       or_die(dock_ecu::parse_slots(node_config("dock_ecu", dock_ecu::DockLogic::kType)));
-  return or_die(dock_ecu::DockLogic::create(slots, host_sim_board(), scripted_backend(fuzz_clock()),
-                                            fuzz_clock().now().mono));
+  return or_die(dock_ecu::DockLogic::create(
+      slots, or_die(dock_ecu::open_slot_sensors(slots, host_sim_board(), scripted_backend(fuzz_clock()),
+                                                fuzz_clock().now().mono))));
 }
 
 rsp_ecu::RspLogic make_rsp_logic() {
@@ -45,17 +49,22 @@ rsp_ecu::RspLogic make_rsp_logic() {
       or_die(rsp_ecu::parse_rsp_settings(node_config("rsp_ecu", rsp_ecu::RspLogic::kType)));
   static rsp_ecu::DockInput dock{"dock", "/dock_ecu/dock/state", std::chrono::milliseconds(500),
                                  hub_msgs_msg_dds__DockState__desc, 0};
-  return or_die(rsp_ecu::RspLogic::create(settings, host_sim_board(), scripted_backend(fuzz_clock()), dock,
-                                          fuzz_clock().now().mono));
+  return or_die(rsp_ecu::RspLogic::create(
+      settings,
+      or_die(rsp_ecu::open_rsp_devices(settings, host_sim_board(), scripted_backend(fuzz_clock()),
+                                       fuzz_clock().now().mono)),
+      dock, fuzz_clock().now().mono));
 }
 
 tool_ecu::SmartToolLogic make_smart_tool_logic() {
   static const auto settings =
       or_die(tool_ecu::parse_smart_tool_settings(node_config("tool_ecu", tool_ecu::SmartToolLogic::kType)));
   scripted_backend(fuzz_clock()).can() = CanScript{};
-  return or_die(tool_ecu::SmartToolLogic::create(settings, host_sim_board(), scripted_backend(fuzz_clock()),
-                                                 std::make_unique<RobotHoldsTool>(), fuzz_clock().now().mono,
-                                                 quiet_logger()));
+  return or_die(tool_ecu::SmartToolLogic::create(
+      settings,
+      or_die(tool_ecu::open_smart_tool_devices(settings, host_sim_board(), scripted_backend(fuzz_clock()),
+                                               fuzz_clock().now().mono)),
+      std::make_unique<RobotHoldsTool>(), fuzz_clock().now().mono, quiet_logger()));
 }
 
 namespace {

@@ -3,10 +3,26 @@
 #include <fmt/format.h>
 
 #include "hubrt/hub_api/hub_layout.h"
+#include "hubrt/hubs/board_devices.h"
 
 #include "dock_logic.h"
 
 namespace hubrt::dock_ecu {
+
+Expected<std::vector<hal::SupervisedInput>> open_slot_sensors(const std::vector<SlotConfig>& slots,
+                                                              const hal::BoardConfig& board,
+                                                              hal::Backend& backend, Time now) {
+  std::vector<hal::SupervisedInput> sensors;
+  sensors.reserve(slots.size());
+  for (const SlotConfig& slot : slots) {
+    auto sensor =
+        hubs::open_board_input(board, backend, fmt::format("slot '{}'", slot.name), slot.signal, now);
+    if (!sensor) return std::move(sensor).error();
+    sensors.push_back(std::move(*sensor));
+  }
+  return sensors;
+}
+
 namespace {
 
 class DockEcuHubType final : public hub_api::HubType {
@@ -45,7 +61,9 @@ class DockEcuHubType final : public hub_api::HubType {
     for (const config::NodeConfig& node : context.config.nodes) {
       auto slots = parse_slots(node);
       if (!slots) return std::move(slots).error();
-      auto logic = DockLogic::create(*slots, context.board, context.backend, now);
+      auto sensors = open_slot_sensors(*slots, context.board, context.backend, now);
+      if (!sensors) return std::move(sensors).error();
+      auto logic = DockLogic::create(*slots, std::move(*sensors));
       if (!logic) return std::move(logic).error();
       auto added = wiring->add(node, std::move(*logic));
       if (!added) return added;

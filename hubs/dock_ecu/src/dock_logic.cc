@@ -40,18 +40,16 @@ void add_requirements(const std::vector<SlotConfig>& slots, hal::BoardRequiremen
   for (const SlotConfig& slot : slots) requirements.inputs.push_back(slot.signal);
 }
 
-Expected<DockLogic> DockLogic::create(const std::vector<SlotConfig>& slots, const hal::BoardConfig& board,
-                                      hal::Backend& backend, Time now) {
+Expected<DockLogic> DockLogic::create(const std::vector<SlotConfig>& slots,
+                                      std::vector<hal::SupervisedInput> sensors) {
+  if (sensors.size() != slots.size()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("dock: {} slots but {} sensors", slots.size(), sensors.size()));
+  }
   DockLogic logic;
   logic.slots_.reserve(slots.size());
-  for (const SlotConfig& slot : slots) {
-    const hal::BoardInput* input = board.find_input(slot.signal);
-    if (input == nullptr) {
-      return make_error(ErrorCode::kNotFound, fmt::format("slot '{}': board {} has no input '{}'", slot.name,
-                                                          board.file, slot.signal));
-    }
-    logic.slots_.push_back(Slot{slot.name, hubs::ReopeningInput(backend, input->config)});
-    logic.slots_.back().sensor.open_now(now);
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    logic.slots_.push_back(Slot{slots[i].name, std::move(sensors[i])});
   }
   logic.wire_slots_.resize(logic.slots_.size());
   return logic;
@@ -96,7 +94,7 @@ void DockLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) n
     wire_slots_[i].occupied = slot.occupied;
     if (!slot.sensor.is_open()) {
       errors.add("slot '{}': sensor {} not available: {}", slot.name, slot.sensor.config().signal,
-                 slot.sensor.open_error());
+                 slot.sensor.error());
     } else if (slot.failures > 0) {
       errors.add("slot '{}': sensor {} failed to read {} time(s) since the last reset (last: {})", slot.name,
                  slot.sensor.config().signal, slot.failures, to_string(slot.last_failure));

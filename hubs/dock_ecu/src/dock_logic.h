@@ -10,10 +10,8 @@
 #include <vector>
 
 #include "hubrt/config/hub_config.h"
-#include "hubrt/hal/backend.h"
-#include "hubrt/hal/board/board_config.h"
 #include "hubrt/hal/board/board_requirements.h"
-#include "hubrt/hubs/reopening_input.h"
+#include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/runtime/node.h"
 
 #include "dock_messages.h"
@@ -37,10 +35,11 @@ class DockLogic {
   static constexpr std::array<std::string_view, 2> kActions{"monitor", "reset"};
   static constexpr std::size_t kMaxSlots = 16;
 
-  // Opens every slot's sensor now; one that fails is reported and retried (ReopeningInput).
-  // Errors: a slot's signal missing from the board (kNotFound).
-  static Expected<DockLogic> create(const std::vector<SlotConfig>& slots, const hal::BoardConfig& board,
-                                    hal::Backend& backend, Time now);
+  // `sensors`: one per slot, in the order of `slots`, opened by the hub type
+  // (open_slot_sensors()); one that is not open is reported and retried.
+  // Errors: kInvalidArgument when the counts differ.
+  static Expected<DockLogic> create(const std::vector<SlotConfig>& slots,
+                                    std::vector<hal::SupervisedInput> sensors);
 
   DockLogic(DockLogic&&) noexcept = default;
   DockLogic& operator=(DockLogic&&) noexcept = default;
@@ -61,7 +60,7 @@ class DockLogic {
  private:
   struct Slot {
     std::string name;
-    hubs::ReopeningInput sensor;
+    hal::SupervisedInput sensor;
     bool occupied = false;
     bool readable = false;       // the last read worked
     std::uint32_t failures = 0;  // reads that failed since the last reset

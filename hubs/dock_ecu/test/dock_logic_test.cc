@@ -6,6 +6,8 @@
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
 
+#include "dock_ecu_hub_type.h"
+
 namespace hubrt::dock_ecu {
 namespace {
 
@@ -36,7 +38,9 @@ class DockLogicTest : public ::testing::Test {
   }
 
   DockLogic make_logic() {
-    auto logic = DockLogic::create(slots_, board_, *fake_, clock_.now().mono);
+    auto sensors = open_slot_sensors(slots_, board_, *fake_, clock_.now().mono);
+    EXPECT_TRUE(sensors) << sensors.error().message;
+    auto logic = DockLogic::create(slots_, std::move(*sensors));
     EXPECT_TRUE(logic) << logic.error().message;
     return std::move(*logic);
   }

@@ -4,10 +4,47 @@
 
 #include "hubrt/hub_api/hub_layout.h"
 #include "hubrt/hub_api/subscriptions.h"
+#include "hubrt/hubs/board_devices.h"
 
 #include "rsp_logic.h"
 
 namespace hubrt::rsp_ecu {
+
+Expected<RspDevices> open_rsp_devices(const RspSettings& settings, const hal::BoardConfig& board,
+                                      hal::Backend& backend, Time now) {
+  constexpr std::string_view kOwner = "tool changer";
+  const hal::BoardOutput* lock_entry = board.find_output(settings.lock_valve);
+  if (lock_entry != nullptr) {
+    if (auto lock = check_lock_valve(lock_entry->config, fmt::format("board {}", board.file)); !lock) {
+      return std::move(lock).error();
+    }
+  }
+  const auto inputs = [&](const auto& signals,
+                          auto signal_of) -> Expected<std::vector<hal::SupervisedInput>> {
+    std::vector<hal::SupervisedInput> opened;
+    for (const auto& entry : signals) {
+      auto input = hubs::open_board_input(board, backend, kOwner, signal_of(entry), now);
+      if (!input) return std::move(input).error();
+      opened.push_back(std::move(*input));
+    }
+    return opened;
+  };
+  auto lock = hubs::open_board_output(board, backend, kOwner, settings.lock_valve, now);
+  if (!lock) return std::move(lock).error();
+  auto gripper = hubs::open_board_output(board, backend, kOwner, settings.gripper_valve, now);
+  if (!gripper) return std::move(gripper).error();
+  auto tools =
+      inputs(settings.tool_lines, [](const ToolLine& line) -> const std::string& { return line.signal; });
+  if (!tools) return std::move(tools).error();
+  auto confirms = inputs(settings.gripper_confirms,
+                         [](const std::string& signal) -> const std::string& { return signal; });
+  if (!confirms) return std::move(confirms).error();
+  auto pressure = hubs::open_board_input(board, backend, kOwner, settings.pressure_switch, now);
+  if (!pressure) return std::move(pressure).error();
+  return RspDevices{std::move(*lock), std::move(*gripper), std::move(*tools), std::move(*confirms),
+                    std::move(*pressure)};
+}
+
 namespace {
 
 class RspEcuHubType final : public hub_api::HubType {
@@ -62,7 +99,12 @@ class RspEcuHubType final : public hub_api::HubType {
       if (!settings) return std::move(settings).error();
       auto dock = context.subscriptions.get<dock_ecu::DockState>(settings->dock_subscription);
       if (!dock) return std::move(dock).error();
-      auto logic = RspLogic::create(*settings, context.board, context.backend, **dock, now);
+      auto devices = open_rsp_devices(*settings, context.board, context.backend, now);
+      if (!devices) {
+        return make_error(devices.error().code,
+                          fmt::format("node '{}': {}", node.name, devices.error().message));
+      }
+      auto logic = RspLogic::create(*settings, std::move(*devices), **dock, now);
       if (!logic) {
         return make_error(logic.error().code, fmt::format("node '{}': {}", node.name, logic.error().message));
       }

@@ -16,72 +16,41 @@ char* wire(const char* text) noexcept {
   return const_cast<char*>(text);
 }  // NOLINT: wire type wants char*
 
-Expected<const hal::DigitalInputConfig*> board_input(const hal::BoardConfig& board,
-                                                     const std::string& signal) {
-  const hal::BoardInput* input = board.find_input(signal);
-  if (input == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("tool changer: board {} has no input '{}'", board.file, signal));
-  }
-  return &input->config;
-}
-
-Expected<const hal::DigitalOutputConfig*> board_output(const hal::BoardConfig& board,
-                                                       const std::string& signal) {
-  const hal::BoardOutput* output = board.find_output(signal);
-  if (output == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("tool changer: board {} has no output '{}'", board.file, signal));
-  }
-  return &output->config;
-}
-
 }  // namespace
 
-Expected<RspLogic> RspLogic::create(const RspSettings& settings, const hal::BoardConfig& board,
-                                    hal::Backend& backend, DockInput& dock, Time now) {
-  auto lock = board_output(board, settings.lock_valve);
-  if (!lock) return std::move(lock).error();
+Expected<void> check_lock_valve(const hal::DigitalOutputConfig& lock, std::string_view where) {
   // Energised = open: a board that energised it at start or on faults would drop the tool.
-  if ((*lock)->initial || (*lock)->safe) {
-    return make_error(
-        ErrorCode::kInvalidArgument,
-        fmt::format("tool changer: board {} drives the lock valve '{}' active (= changer open) "
-                    "{}; it must have initial: false and safe: false",
-                    board.file, settings.lock_valve, (*lock)->initial ? "at start" : "on faults"));
-  }
-  auto gripper = board_output(board, settings.gripper_valve);
-  if (!gripper) return std::move(gripper).error();
+  if (!lock.initial && !lock.safe) return {};
+  return make_error(ErrorCode::kInvalidArgument,
+                    fmt::format("tool changer: {} drives the lock valve '{}' active (= changer open) "
+                                "{}; it must have initial: false and safe: false",
+                                where, lock.signal, lock.initial ? "at start" : "on faults"));
+}
 
-  const auto line = [&](const std::string& signal) -> Expected<Line> {
-    auto config = board_input(board, signal);
-    if (!config) return std::move(config).error();
-    Line made{hubs::ReopeningInput(backend, **config)};
-    made.input.open_now(now);
+Expected<RspLogic> RspLogic::create(const RspSettings& settings, RspDevices devices, DockInput& dock,
+                                    Time now) {
+  if (auto lock = check_lock_valve(devices.lock_valve.config(), "the configuration"); !lock)
+    return lock.error();
+  if (devices.tool_lines.size() != settings.tool_lines.size() ||
+      devices.confirms.size() != settings.gripper_confirms.size()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("tool changer: {} tool-ID lines and {} confirms handed in, the settings "
+                                  "name {} and {}",
+                                  devices.tool_lines.size(), devices.confirms.size(),
+                                  settings.tool_lines.size(), settings.gripper_confirms.size()));
+  }
+  const auto lines = [](std::vector<hal::SupervisedInput>& inputs) {
+    std::vector<Line> made;
+    made.reserve(inputs.size());
+    for (hal::SupervisedInput& input : inputs) made.push_back(Line{std::move(input)});
     return made;
   };
-  std::vector<Line> tools;
-  for (const ToolLine& tool : settings.tool_lines) {
-    auto made = line(tool.signal);
-    if (!made) return std::move(made).error();
-    tools.push_back(std::move(*made));
-  }
-  std::vector<Line> confirms;
-  for (const std::string& signal : settings.gripper_confirms) {
-    auto made = line(signal);
-    if (!made) return std::move(made).error();
-    confirms.push_back(std::move(*made));
-  }
-  auto pressure = line(settings.pressure_switch);
-  if (!pressure) return std::move(pressure).error();
-
-  Devices devices{ReopeningOutput(backend, **lock), ReopeningOutput(backend, **gripper), std::move(tools),
-                  std::move(confirms), std::move(*pressure)};
-  devices.lock_valve.open_now(now);
-  devices.gripper_valve.open_now(now);
-  RspLogic logic(settings, dock, std::move(devices), now);
   // The gripper line opens at the board's initial level: that is "as it is" until told otherwise.
-  logic.gripper_grab_ = (*gripper)->initial;
+  const bool gripper_initial = devices.gripper_valve.config().initial;
+  Devices owned{std::move(devices.lock_valve), std::move(devices.gripper_valve), lines(devices.tool_lines),
+                lines(devices.confirms), Line{std::move(devices.pressure)}};
+  RspLogic logic(settings, dock, std::move(owned), now);
+  logic.gripper_grab_ = gripper_initial;
   return logic;
 }
 
@@ -258,16 +227,16 @@ void RspLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) no
 
 void RspLogic::report_line(const Line& line, runtime::ErrorList& errors) const noexcept {
   if (!line.input.is_open()) {
-    errors.add("input {} not available: {}", line.input.config().signal, line.input.open_error());
+    errors.add("input {} not available: {}", line.input.config().signal, line.input.error());
   } else if (!line.readable) {
     errors.add("input {} failed to read: {}", line.input.config().signal, to_string(line.failure));
   }
 }
 
-void RspLogic::report_output(const ReopeningOutput& output, Status last_write,
+void RspLogic::report_output(const hal::SupervisedOutput& output, Status last_write,
                              runtime::ErrorList& errors) noexcept {
   if (!output.is_open()) {
-    errors.add("output {} not available: {}", output.config().signal, output.open_error());
+    errors.add("output {} not available: {}", output.config().signal, output.error());
   } else if (!last_write.is_ok()) {
     errors.add("output {} failed to write: {}", output.config().signal, to_string(last_write.code()));
   }

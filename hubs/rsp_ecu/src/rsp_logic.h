@@ -19,16 +19,13 @@
 #include <array>
 #include <vector>
 
-#include "hubrt/hal/backend.h"
-#include "hubrt/hal/board/board_config.h"
 #include "hubrt/hub_api/remote_state.h"
-#include "hubrt/hubs/reopening_input.h"
+#include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/runtime/node.h"
 
 #include "dock_messages.h"
 #include "gripper_monitor.h"
 #include "lock_position.h"
-#include "reopening_output.h"
 #include "rsp_messages.h"
 #include "rsp_settings.h"
 #include "tool_id.h"
@@ -36,6 +33,19 @@
 namespace hubrt::rsp_ecu {
 
 using DockInput = hub_api::RemoteState<dock_ecu::DockState>;
+
+// The node's devices, opened by the hub type (open_rsp_devices() in rsp_ecu_hub_type.h).
+struct RspDevices {
+  hal::SupervisedOutput lock_valve;
+  hal::SupervisedOutput gripper_valve;
+  std::vector<hal::SupervisedInput> tool_lines;  // in the order of settings.tool_lines
+  std::vector<hal::SupervisedInput> confirms;    // [A, B]
+  hal::SupervisedInput pressure;
+};
+
+// The lock valve must stay de-energised (= closed) at start and on faults.
+// Errors: kInvalidArgument, naming `where` the valve is configured (e.g. "board rpi4-rsp-ecu.yaml").
+Expected<void> check_lock_valve(const hal::DigitalOutputConfig& lock, std::string_view where);
 
 class RspLogic {
  public:
@@ -45,12 +55,13 @@ class RspLogic {
   static constexpr std::array<std::string_view, 3> kActions{"lock", "unlock", "reset"};
   static constexpr std::array<std::string_view, 4> kGripperStates{"grab", "release", "keep", ""};
 
-  // Opens the valves (the lock valve de-energised, the gripper valve at the board's initial level)
-  // and the inputs now; a device that fails to open is reported and retried. `dock` must outlive
-  // the logic. Errors: a signal missing from the board (kNotFound); a lock valve whose board
-  // entry would energise it at start or on faults (kInvalidArgument: energised = open).
-  static Expected<RspLogic> create(const RspSettings& settings, const hal::BoardConfig& board,
-                                   hal::Backend& backend, DockInput& dock, Time now);
+  // Takes the devices the hub type opened (the lock valve de-energised, the gripper valve at the
+  // board's initial level); a device that is not open is reported and retried. `dock` must
+  // outlive the logic. Errors: device counts that do not match the settings (kInvalidArgument); a
+  // lock valve configured to be energised at start or on faults (kInvalidArgument: energised =
+  // open; open_rsp_devices refuses such a board before it opens anything).
+  static Expected<RspLogic> create(const RspSettings& settings, RspDevices devices, DockInput& dock,
+                                   Time now);
 
   RspLogic(RspLogic&&) noexcept = default;
   RspLogic& operator=(RspLogic&&) noexcept = default;
@@ -81,15 +92,15 @@ class RspLogic {
 
  private:
   struct Line {
-    hubs::ReopeningInput input;
+    hal::SupervisedInput input;
     bool level = false;
     bool readable = false;
     ErrorCode failure = ErrorCode::kOk;  // of the last read, when it failed
   };
-  // The devices, opened by create().
+  // The devices handed to create().
   struct Devices {
-    ReopeningOutput lock_valve;
-    ReopeningOutput gripper_valve;
+    hal::SupervisedOutput lock_valve;
+    hal::SupervisedOutput gripper_valve;
     std::vector<Line> tool_lines;  // in the order of settings.tool_lines
     std::vector<Line> confirms;    // [A, B]
     Line pressure;
@@ -100,7 +111,7 @@ class RspLogic {
   void read_pressure(Time now) noexcept;
   void evaluate_permission(Time now) noexcept;
   void report_line(const Line& line, runtime::ErrorList& errors) const noexcept;
-  static void report_output(const ReopeningOutput& output, Status last_write,
+  static void report_output(const hal::SupervisedOutput& output, Status last_write,
                             runtime::ErrorList& errors) noexcept;
 
   std::vector<std::string> tool_names_;

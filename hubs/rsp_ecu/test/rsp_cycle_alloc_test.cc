@@ -45,7 +45,7 @@ TEST(RspCycle, AllocatesNothingInSteadyState) {
   auto fake = hal::fake::FakeBackend::create(*board, clock);
   ASSERT_TRUE(fake) << fake.error().message;
   DockFeed dock(milliseconds(500));
-  auto logic = RspLogic::create(*settings, *board, **fake, dock.input(), clock.now().mono);
+  auto logic = testing::make_rsp_logic(*settings, *board, **fake, dock.input(), clock.now().mono);
   ASSERT_TRUE(logic) << logic.error().message;
   QueueSource source;
   NullSink sink;

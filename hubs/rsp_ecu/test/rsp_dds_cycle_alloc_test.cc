@@ -12,8 +12,8 @@
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "hubrt/assembly/dds_ports.h"
-#include "hubrt/assembly/node_wiring.h"
+#include "hubrt/hub_api/dds_ports.h"
+#include "hubrt/hub_api/node_wiring.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/reader.h"
@@ -57,7 +57,7 @@ TEST(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
   ASSERT_TRUE(reader) << reader.error().message;
   ASSERT_TRUE(writer->wait_for_readers(1, kMatchBound));
   const dds_entity_t writer_handle = writer->handle();
-  assembly::DdsStateSink<RspState> sink(std::move(*writer));
+  hub_api::DdsStateSink<RspState> sink(std::move(*writer));
 
   ManualClock clock;
   auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
@@ -77,7 +77,7 @@ TEST(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
   options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
   runtime::Hub hub(runtime::HubOptions{"rsp_ecu", "rsp_alloc", milliseconds(10), options.log});
   auto owned_node = std::make_unique<runtime::Node<RspLogic>>(options, std::move(*logic), source, sink,
-                                                              assembly::message_ops<RspCommand>());
+                                                              hub_api::message_ops<RspCommand>());
   const runtime::Node<RspLogic>& node = *owned_node;
   hub.add_node(std::move(owned_node));
 

@@ -41,7 +41,7 @@ class RspLogicTest : public ::testing::Test {
   }
 
   RspLogic make_logic() {
-    auto logic = RspLogic::create(settings_, board_, *fake_, dock_.input(), clock_.now().mono);
+    auto logic = testing::make_rsp_logic(settings_, board_, *fake_, dock_.input(), clock_.now().mono);
     EXPECT_TRUE(logic) << logic.error().message;
     return std::move(*logic);
   }
@@ -590,7 +590,7 @@ TEST_F(RspLogicTest, ABoardThatWouldOpenTheLockOnFaultsIsRefused) {
   for (hal::BoardOutput& output : board_.outputs) {
     if (output.config.signal == "rsp.lock_valve") output.config.safe = true;
   }
-  auto logic = RspLogic::create(settings_, board_, *fake_, dock_.input(), clock_.now().mono);
+  auto logic = testing::make_rsp_logic(settings_, board_, *fake_, dock_.input(), clock_.now().mono);
   ASSERT_FALSE(logic);
   EXPECT_NE(
       logic.error().message.find("drives the lock valve 'rsp.lock_valve' active (= changer open) on faults"),

@@ -38,7 +38,7 @@ class RspNodeTest : public ::testing::Test {
     auto fake = hal::fake::FakeBackend::create(board_, clock_);
     ASSERT_TRUE(fake) << fake.error().message;
     fake_ = std::move(*fake);
-    auto logic = RspLogic::create(*settings, board_, *fake_, dock_.input(), clock_.now().mono);
+    auto logic = testing::make_rsp_logic(*settings, board_, *fake_, dock_.input(), clock_.now().mono);
     ASSERT_TRUE(logic) << logic.error().message;
     runtime::NodeOptions options;
     options.name = "rsp";

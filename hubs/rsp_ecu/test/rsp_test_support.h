@@ -14,9 +14,19 @@
 #include "hubrt/runtime/ports.h"
 
 #include "dock_messages.h"
+#include "rsp_ecu_hub_type.h"
+#include "rsp_logic.h"
 #include "rsp_messages.h"
 
 namespace hubrt::rsp_ecu::testing {
+
+// The node as the hub type builds it: its devices opened from the board, then handed in.
+inline Expected<RspLogic> make_rsp_logic(const RspSettings& settings, const hal::BoardConfig& board,
+                                         hal::Backend& backend, DockInput& dock, Time now) {
+  auto devices = open_rsp_devices(settings, board, backend, now);
+  if (!devices) return std::move(devices).error();
+  return RspLogic::create(settings, std::move(*devices), dock, now);
+}
 
 // A command whose strings live as long as it does.
 struct OwnedCommand {

@@ -1,9 +1,5 @@
 #include "arm_position.h"
 
-#include <vector>
-
-#include <fmt/format.h>
-
 namespace hubrt::tool_ecu {
 
 ArmPosition decode_arm_position(bool home, bool pre_home, bool out_of_range) noexcept {
@@ -32,23 +28,6 @@ std::string_view to_string(ArmPosition position) noexcept {
   return "unknown";
 }
 
-Expected<ArmSensors> ArmSensors::create(const ArmSignals& signals, const hal::BoardConfig& board,
-                                        hal::Backend& backend, Time now) {
-  const std::array<const std::string*, 3> names{&signals.home, &signals.pre_home, &signals.out_of_range};
-  std::vector<hubs::ReopeningInput> opened;
-  for (const std::string* name : names) {
-    const hal::BoardInput* input = board.find_input(*name);
-    if (input == nullptr) {
-      return make_error(ErrorCode::kNotFound,
-                        fmt::format("arm position: board {} has no input '{}'", board.file, *name));
-    }
-    opened.emplace_back(backend, input->config);
-    opened.back().open_now(now);
-  }
-  return ArmSensors(
-      {Sensor{std::move(opened[0])}, Sensor{std::move(opened[1])}, Sensor{std::move(opened[2])}});
-}
-
 ArmPosition ArmSensors::read(Time now) noexcept {
   std::array<bool, 3> active{};
   bool all_read = true;
@@ -69,7 +48,7 @@ void ArmSensors::report(runtime::ErrorList& errors) const noexcept {
   for (const Sensor& sensor : sensors_) {
     if (!sensor.input.is_open()) {
       errors.add("arm position sensor {} not available: {}", sensor.input.config().signal,
-                 sensor.input.open_error());
+                 sensor.input.error());
     } else if (sensor.last_error != ErrorCode::kOk) {
       errors.add("arm position sensor {} failed to read: {}", sensor.input.config().signal,
                  to_string(sensor.last_error));

@@ -7,12 +7,8 @@
 #include <string_view>
 
 #include "hubrt/base/time.h"
-#include "hubrt/hal/backend.h"
-#include "hubrt/hal/board/board_config.h"
-#include "hubrt/hubs/reopening_input.h"
+#include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/runtime/error_list.h"
-
-#include "tool_settings.h"
 
 namespace hubrt::tool_ecu {
 
@@ -30,14 +26,15 @@ ArmPosition decode_arm_position(bool home, bool pre_home, bool out_of_range) noe
 // "operating", "home", "pre_home", "out_of_range", "unclear", "unknown".
 std::string_view to_string(ArmPosition position) noexcept;
 
-// The three sensors, opened again until they work (ReopeningInput). Not thread-safe: the cycle
+// The three sensors, supervised devices opened again until they work. Not thread-safe: the cycle
 // thread owns it. Reading does not allocate (reopening does).
 class ArmSensors {
  public:
-  // Opens the sensors now; one that fails is reported and retried.
-  // Errors: a signal missing from the board (kNotFound, naming it).
-  static Expected<ArmSensors> create(const ArmSignals& signals, const hal::BoardConfig& board,
-                                     hal::Backend& backend, Time now);
+  // The sensors as the hub type opened them: home, pre-home, out-of-range. One that is not open is
+  // reported and retried.
+  explicit ArmSensors(std::array<hal::SupervisedInput, 3> sensors) noexcept
+      : sensors_{Sensor{std::move(sensors[0])}, Sensor{std::move(sensors[1])},
+                 Sensor{std::move(sensors[2])}} {}
 
   // Samples all three; kUnknown when any read fails.
   ArmPosition read(Time now) noexcept;
@@ -50,10 +47,9 @@ class ArmSensors {
 
  private:
   struct Sensor {
-    hubs::ReopeningInput input;
+    hal::SupervisedInput input;
     ErrorCode last_error = ErrorCode::kOk;  // of the last read
   };
-  explicit ArmSensors(std::array<Sensor, 3> sensors) : sensors_(std::move(sensors)) {}
 
   std::array<Sensor, 3> sensors_;  // home, pre-home, out-of-range
 };

@@ -1,7 +1,5 @@
 #include "run_lines.h"
 
-#include <fmt/format.h>
-
 namespace hubrt::tool_ecu {
 
 std::string_view to_string(RunOutput output) noexcept {
@@ -16,45 +14,11 @@ std::string_view to_string(RunOutput output) noexcept {
   return "idle";
 }
 
-Expected<RunLines> RunLines::create(std::string_view run_forward, std::string_view run_reverse,
-                                    const hal::BoardConfig& board, hal::Backend& backend, Time now) {
-  RunLines lines(backend);
-  const std::array<std::string_view, 2> names{run_forward, run_reverse};
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const hal::BoardOutput* output = board.find_output(names[i]);
-    if (output == nullptr) {
-      return make_error(ErrorCode::kNotFound,
-                        fmt::format("smart tool: board {} has no output '{}'", board.file, names[i]));
-    }
-    lines.lines_[i].config = output->config;
-    lines.lines_[i].level = output->config.initial;
-    lines.open(lines.lines_[i], now);
-  }
-  lines.next_open_ = now + kReopenInterval;
-  return lines;
-}
-
-void RunLines::open(Line& line, Time /*now*/) {
-  auto opened = backend_->open_output(line.config);
-  if (!opened) {
-    line.open_error.assign(opened.error().message);
-    return;
-  }
-  line.output = std::move(*opened);
-  line.open_error.clear();
-  line.level = line.config.initial;
-}
-
-bool RunLines::write(Line& line, bool level, Time now) noexcept {
-  if (line.output == nullptr) {
-    if (now < next_open_) return false;
-    open(line, now);
-    if (line.output == nullptr) return false;
-  }
-  const Status written = line.output->write(level);
-  line.write_error = written.code();
-  if (written.is_ok()) line.level = level;
-  return written.is_ok();
+void RunLines::write(Line& line, bool level, Time now) noexcept {
+  const Status written = line.output.write(level, now);
+  // A line that is not open is reported as such (report()), not as a failed write.
+  line.write_error =
+      written.code() == ErrorCode::kUnavailable && !line.output.is_open() ? ErrorCode::kOk : written.code();
 }
 
 void RunLines::drive(RunOutput output, Time now) noexcept {
@@ -62,38 +26,46 @@ void RunLines::drive(RunOutput output, Time now) noexcept {
   const bool reverse = output == RunOutput::kReverse;
   Line& forward_line = lines_[0];
   Line& reverse_line = lines_[1];
-  if (reverse_line.level != reverse && forward_line.level) write(forward_line, false, now);
+  // driven() is the level a line is at: false while it is not open (nothing drives it) and its
+  // `initial` level right after it was opened again.
+  if (reverse_line.output.driven() != reverse && forward_line.output.driven())
+    write(forward_line, false, now);
   // The direction only changes once the run enable is off.
-  if (!forward_line.level || reverse_line.level == reverse) write(reverse_line, reverse, now);
-  if (reverse_line.level == reverse) write(forward_line, run, now);
-  if (now >= next_open_) next_open_ = now + kReopenInterval;
+  if (!forward_line.output.driven() || reverse_line.output.driven() == reverse) {
+    write(reverse_line, reverse, now);
+  }
+  if (reverse_line.output.driven() == reverse) {
+    write(forward_line, run, now);
+  } else if (forward_line.output.driven()) {
+    // The direction line could not be set (its chip went away: it drives nothing now, which the
+    // tool reads as "forward"): the run enable must not stay on with the wrong direction.
+    write(forward_line, false, now);
+  }
   update_shown();
 }
 
 void RunLines::update_shown() noexcept {
-  if (!lines_[0].level) {
+  if (!lines_[0].output.driven()) {
     shown_ = RunOutput::kIdle;
   } else {
-    shown_ = lines_[1].level ? RunOutput::kReverse : RunOutput::kForward;
+    shown_ = lines_[1].output.driven() ? RunOutput::kReverse : RunOutput::kForward;
   }
 }
 
 void RunLines::drive_safe() noexcept {
   for (Line& line : lines_) {
-    if (line.output == nullptr) continue;
-    const Status written = line.output->write_safe();
-    line.write_error = written.code();
-    if (written.is_ok()) line.level = line.output->safe_value();
+    if (!line.output.is_open()) continue;
+    line.write_error = line.output.write_safe_if_open().code();
   }
   update_shown();
 }
 
 void RunLines::report(runtime::ErrorList& errors) const noexcept {
   for (const Line& line : lines_) {
-    if (line.output == nullptr) {
-      errors.add("run line {} not available: {}", line.config.signal, line.open_error.view());
+    if (!line.output.is_open()) {
+      errors.add("run line {} not available: {}", line.output.config().signal, line.output.error());
     } else if (line.write_error != ErrorCode::kOk) {
-      errors.add("run line {}: write failed ({})", line.config.signal, to_string(line.write_error));
+      errors.add("run line {}: write failed ({})", line.output.config().signal, to_string(line.write_error));
     }
   }
 }

@@ -59,48 +59,19 @@ void join_bits(runtime::TextBuffer<N>& out, Bits bits,
   out.assign(std::string_view(text.data(), length));
 }
 
-Expected<hubs::ReopeningInput> open_input(const hal::BoardConfig& board, hal::Backend& backend,
-                                          const std::string& signal, Time now) {
-  const hal::BoardInput* input = board.find_input(signal);
-  if (input == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("smart tool: board {} has no input '{}'", board.file, signal));
-  }
-  hubs::ReopeningInput opened(backend, input->config);
-  opened.open_now(now);
-  return opened;
-}
-
 }  // namespace
 
 // --- construction ------------------------------------------------------------------------------
 
-Expected<SmartToolLogic> SmartToolLogic::create(const SmartToolSettings& settings,
-                                                const hal::BoardConfig& board, hal::Backend& backend,
-                                                std::unique_ptr<ToolHolderView> holder, Time now,
+Expected<SmartToolLogic> SmartToolLogic::create(const SmartToolSettings& settings, SmartToolDevices devices,
+                                                std::unique_ptr<ToolHolderView> holder, Time /*now*/,
                                                 std::shared_ptr<spdlog::logger> log) {
-  auto lines = RunLines::create(settings.run_forward, settings.run_reverse, board, backend, now);
-  if (!lines) return std::move(lines).error();
-  auto arm = ArmSensors::create(settings.arm, board, backend, now);
-  if (!arm) return std::move(arm).error();
-  auto forward = open_input(board, backend, settings.button_forward, now);
-  if (!forward) return std::move(forward).error();
-  auto reverse = open_input(board, backend, settings.button_reverse, now);
-  if (!reverse) return std::move(reverse).error();
-  auto torque = open_input(board, backend, settings.torque_reached, now);
-  if (!torque) return std::move(torque).error();
-  auto alarm = open_input(board, backend, settings.summary_alarm, now);
-  if (!alarm) return std::move(alarm).error();
-  const hal::BoardCanBus* bus = board.find_can(settings.bus);
-  if (bus == nullptr) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("smart tool: board {} has no CAN bus '{}'", board.file, settings.bus));
-  }
-  ToolController controller(backend, bus->config, settings.node_id, now);
-  return SmartToolLogic(
-      settings, std::move(*lines), std::move(*arm),
-      Inputs{std::move(*forward), std::move(*reverse), std::move(*torque), std::move(*alarm)},
-      std::move(controller), std::move(holder), log ? std::move(log) : spdlog::default_logger());
+  return SmartToolLogic(settings, RunLines(std::move(devices.run_forward), std::move(devices.run_reverse)),
+                        ArmSensors(std::move(devices.arm)),
+                        Inputs{std::move(devices.button_forward), std::move(devices.button_reverse),
+                               std::move(devices.torque_reached), std::move(devices.summary_alarm)},
+                        ToolController(std::move(devices.bus), settings.node_id), std::move(holder),
+                        log ? std::move(log) : spdlog::default_logger());
 }
 
 SmartToolLogic::SmartToolLogic(SmartToolSettings settings, RunLines lines, ArmSensors arm, Inputs inputs,
@@ -138,7 +109,7 @@ bool SmartToolLogic::validate(const Command& command, runtime::Problem& problem)
 
 // --- inputs ------------------------------------------------------------------------------------
 
-bool SmartToolLogic::read_input(hubs::ReopeningInput& input, bool& unreadable, Time now) noexcept {
+bool SmartToolLogic::read_input(hal::SupervisedInput& input, bool& unreadable, Time now) noexcept {
   const Result<bool> level = input.read(now);
   unreadable = !level.is_ok();
   if (level.is_ok()) return level.value();
@@ -646,10 +617,9 @@ void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) 
 
   lines_.report(errors);
   arm_sensors_.report(errors);
-  for (const hubs::ReopeningInput* input :
+  for (const hal::SupervisedInput* input :
        {&inputs_.button_forward, &inputs_.button_reverse, &inputs_.torque_reached, &inputs_.summary_alarm}) {
-    if (!input->is_open())
-      errors.add("input {} not available: {}", input->config().signal, input->open_error());
+    if (!input->is_open()) errors.add("input {} not available: {}", input->config().signal, input->error());
   }
   if (input_error_ != ErrorCode::kOk && input_error_ != ErrorCode::kUnavailable) {
     errors.add("input {} failed to read: {}", input_error_signal_, to_string(input_error_));

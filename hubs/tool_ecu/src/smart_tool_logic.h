@@ -20,9 +20,7 @@
 
 #include <spdlog/logger.h>
 
-#include "hubrt/hal/backend.h"
-#include "hubrt/hal/board/board_config.h"
-#include "hubrt/hubs/reopening_input.h"
+#include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/runtime/node.h"
 
 #include "arm_position.h"
@@ -34,6 +32,18 @@
 #include "tool_settings.h"
 
 namespace hubrt::tool_ecu {
+
+// The node's devices, opened by the hub type (open_smart_tool_devices() in tool_ecu_hub_type.h).
+struct SmartToolDevices {
+  hal::SupervisedOutput run_forward;
+  hal::SupervisedOutput run_reverse;
+  std::array<hal::SupervisedInput, 3> arm;  // home, pre-home, out-of-range
+  hal::SupervisedInput button_forward;
+  hal::SupervisedInput button_reverse;
+  hal::SupervisedInput torque_reached;
+  hal::SupervisedInput summary_alarm;
+  hal::SupervisedCanBus bus;  // filtered for the controller (ToolController::bus_config)
+};
 
 class SmartToolLogic {
  public:
@@ -49,12 +59,12 @@ class SmartToolLogic {
   static constexpr std::uint16_t kNotStarted = 0x0400;      // the controller did not confirm the Start
   static constexpr std::uint16_t kNoResult = 0x0800;        // the run ended without a result frame
 
-  // Opens the run lines, inputs and the CAN bus now; what fails to open is reported in the State
-  // and retried. `holder` tells whether the robot holds the tool. Errors: a signal or the bus
-  // missing from the board (kNotFound).
-  static Expected<SmartToolLogic> create(const SmartToolSettings& settings, const hal::BoardConfig& board,
-                                         hal::Backend& backend, std::unique_ptr<ToolHolderView> holder,
-                                         Time now, std::shared_ptr<spdlog::logger> log = nullptr);
+  // Takes the run lines, inputs and the CAN bus the hub type opened; what is not open is reported
+  // in the State and retried. `holder` tells whether the robot holds the tool. Never fails today;
+  // Expected like every logic's create.
+  static Expected<SmartToolLogic> create(const SmartToolSettings& settings, SmartToolDevices devices,
+                                         std::unique_ptr<ToolHolderView> holder, Time now,
+                                         std::shared_ptr<spdlog::logger> log = nullptr);
 
   SmartToolLogic(SmartToolLogic&&) noexcept = default;
   SmartToolLogic& operator=(SmartToolLogic&&) noexcept = default;
@@ -111,10 +121,10 @@ class SmartToolLogic {
   };
 
   struct Inputs {
-    hubs::ReopeningInput button_forward;
-    hubs::ReopeningInput button_reverse;
-    hubs::ReopeningInput torque_reached;
-    hubs::ReopeningInput summary_alarm;
+    hal::SupervisedInput button_forward;
+    hal::SupervisedInput button_reverse;
+    hal::SupervisedInput torque_reached;
+    hal::SupervisedInput summary_alarm;
   };
 
   SmartToolLogic(SmartToolSettings settings, RunLines lines, ArmSensors arm, Inputs inputs,
@@ -126,7 +136,7 @@ class SmartToolLogic {
   bool fault_blocks() noexcept;
   bool planner_blocked(bool forward, int program) noexcept;
   Want manual() noexcept;
-  bool read_input(hubs::ReopeningInput& input, bool& unreadable, Time now) noexcept;
+  bool read_input(hal::SupervisedInput& input, bool& unreadable, Time now) noexcept;
   void observe_faults(Time now) noexcept;
 
   void begin(const Want& want, Time now) noexcept;

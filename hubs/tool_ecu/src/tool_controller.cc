@@ -27,34 +27,24 @@ std::string_view bus_state_name(hal::CanBusState state) noexcept {
 }
 }  // namespace
 
-ToolController::ToolController(hal::Backend& backend, hal::CanConfig can, std::uint8_t node_id, Time now)
-    : backend_(&backend), can_(std::move(can)), node_id_(node_id) {
-  const auto filters = st::hub_filters(node_id_);
-  can_.filters.assign(filters.begin(), filters.end());
-  open(now);
-}
-
-void ToolController::open(Time now) {
-  next_open_ = now + kReopenInterval;
-  auto bus = backend_->open_can(can_);
-  if (!bus) {
-    bus_problem_.assign(bus.error().message);
-    return;
-  }
-  bus_ = std::move(*bus);
-  bus_fault_ = false;
-  bus_problem_.clear();
+hal::CanConfig ToolController::bus_config(hal::CanConfig board_bus, std::uint8_t node_id) {
+  const auto filters = st::hub_filters(node_id);
+  board_bus.filters.assign(filters.begin(), filters.end());
+  return board_bus;
 }
 
 void ToolController::poll(Time now) noexcept {
-  if (bus_ == nullptr) {
-    if (now < next_open_) return;
-    open(now);
-    if (bus_ == nullptr) return;
+  const bool was_open = bus_.is_open();
+  hal::CanBus* bus = bus_.device(now);
+  if (bus == nullptr) return;
+  if (!was_open) {  // (re)opened just now: nothing wrong with it yet
+    bus_fault_ = false;
+    bus_state_off_ = false;
+    bus_problem_.clear();
   }
   bool failed = false;
   for (int i = 0; i < kMaxFramesPerPoll; ++i) {
-    const Result<hal::CanFrame> frame = bus_->receive(kNoWait);
+    const Result<hal::CanFrame> frame = bus->receive(kNoWait);
     if (frame.is_ok()) {
       handle(frame.value(), now);
       continue;
@@ -62,15 +52,20 @@ void ToolController::poll(Time now) noexcept {
     if (frame.status().code() != ErrorCode::kTimeout) {
       note_failure("receive failed", frame.status().code());
       failed = true;
+      // Lets the supervisor drop a bus its contract says is gone (a CAN bus never is: it
+      // recovers from down and bus-off itself; see supervised_device.h).
+      bus_.observe(frame.status().code(), now);
+      if (!bus_.is_open()) return;
     }
     break;
   }
-  const hal::CanBusStatus bus_status = bus_->status();
+  const hal::CanBusStatus bus_status = bus->status();
   bus_state_off_ =
       bus_status.state == hal::CanBusState::kBusOff || bus_status.state == hal::CanBusState::kDown;
   if (bus_state_off_) {
     bus_fault_ = true;
-    bus_problem_.format("CAN bus {} ({}): {}", can_.bus, can_.interface, bus_state_name(bus_status.state));
+    bus_problem_.format("CAN bus {} ({}): {}", can_config().bus, can_config().interface,
+                        bus_state_name(bus_status.state));
   } else if (!failed) {
     bus_fault_ = false;
     bus_problem_.clear();
@@ -107,8 +102,9 @@ void ToolController::note_heartbeat(const st::Heartbeat& beat, Time now) noexcep
 }
 
 Status ToolController::send(const hal::CanFrame& frame) noexcept {
-  if (bus_ == nullptr) return Status(ErrorCode::kUnavailable);
-  const Status sent = bus_->send(frame, kNoWait);
+  hal::CanBus* bus = bus_.device_if_open();
+  if (bus == nullptr) return Status(ErrorCode::kUnavailable);
+  const Status sent = bus->send(frame, kNoWait);
   if (!sent.is_ok()) note_failure("send failed", sent.code());
   return sent;
 }
@@ -116,7 +112,8 @@ Status ToolController::send(const hal::CanFrame& frame) noexcept {
 void ToolController::note_failure(std::string_view what, ErrorCode code) noexcept {
   if (bus_fault_ && bus_state_off_) return;  // the bus state says it better than the failed call
   bus_fault_ = true;
-  bus_problem_.format("CAN bus {} ({}): {}: {}", can_.bus, can_.interface, what, to_string(code));
+  bus_problem_.format("CAN bus {} ({}): {}: {}", can_config().bus, can_config().interface, what,
+                      to_string(code));
 }
 
 Status ToolController::start(st::Direction direction) noexcept {

@@ -1,6 +1,6 @@
 // The hub's side of the smart tool controller's CAN link (docs/protocols/smart-tool-can.md):
-// the bus (opened again until it works), what the controller last said (heartbeat, status,
-// result, program acknowledgement) and the frames the hub sends. No decisions: SmartToolLogic
+// the bus (a supervised device, opened again until it works), what the controller last said (heartbeat,
+// status, result, program acknowledgement) and the frames the hub sends. No decisions: SmartToolLogic
 // decides; this keeps the protocol bookkeeping out of it.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
-#include "hubrt/hal/backend.h"
+#include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/protocol/smart_tool_can.h"
 #include "hubrt/runtime/text_buffer.h"
 
@@ -21,15 +21,20 @@ namespace hubrt::tool_ecu {
 // block (receive with timeout 0, send with timeout 0) and never allocate; reopening the bus does.
 class ToolController {
  public:
-  static constexpr Duration kReopenInterval = std::chrono::seconds(2);
   // Frames taken per poll at most, so a flooded bus cannot stall the cycle.
   static constexpr int kMaxFramesPerPoll = 64;
 
-  // Opens `can` (its filters replaced by the controller's four ids) now; a failure is kept,
-  // reported by bus_problem() and retried every kReopenInterval.
-  ToolController(hal::Backend& backend, hal::CanConfig can, std::uint8_t node_id, Time now);
+  // The board's bus with its filters replaced by the four ids of controller `node_id`: what the
+  // hub type opens for this controller.
+  static hal::CanConfig bus_config(hal::CanConfig board_bus, std::uint8_t node_id);
 
-  // Takes every waiting frame and samples the bus state.
+  // `bus` as the hub type opened it (bus_config()); one not open yet is reported by bus_problem()
+  // and retried by poll() with the supervised device's back-off.
+  ToolController(hal::SupervisedCanBus bus, std::uint8_t node_id) noexcept
+      : bus_(std::move(bus)), node_id_(node_id) {}
+
+  // Opens the bus if it is not open and a retry is due (that allocates), takes every waiting frame
+  // and samples the bus state.
   void poll(Time now) noexcept;
 
   // Frames to the controller. Errors: kUnavailable (bus not open, bus-off, down), kTimeout (transmit
@@ -72,26 +77,25 @@ class ToolController {
   std::optional<protocol::smart_tool::ProgramAck> take_ack() noexcept { return std::exchange(ack_, {}); }
 
   // --- the bus ---
-  [[nodiscard]] bool bus_open() const noexcept { return bus_ != nullptr; }
+  [[nodiscard]] bool bus_open() const noexcept { return bus_.is_open(); }
   // Bus-off, down, or the last send/receive failed; false while the bus is not open (see bus_open()).
-  [[nodiscard]] bool bus_fault() const noexcept { return bus_ != nullptr && bus_fault_; }
+  [[nodiscard]] bool bus_fault() const noexcept { return bus_.is_open() && bus_fault_; }
   // What is wrong with the bus ("" when nothing): why it is not open, or its fault.
-  [[nodiscard]] std::string_view bus_problem() const noexcept { return bus_problem_.view(); }
-  [[nodiscard]] const hal::CanConfig& can_config() const noexcept { return can_; }
+  [[nodiscard]] std::string_view bus_problem() const noexcept {
+    return bus_.is_open() ? bus_problem_.view() : bus_.error();
+  }
+  [[nodiscard]] const hal::CanConfig& can_config() const noexcept { return bus_.config(); }
+  [[nodiscard]] const hal::SupervisedCanBus& bus() const noexcept { return bus_; }
   [[nodiscard]] std::uint8_t node_id() const noexcept { return node_id_; }
 
  private:
-  void open(Time now);
   void handle(const hal::CanFrame& frame, Time now) noexcept;
   void note_heartbeat(const protocol::smart_tool::Heartbeat& beat, Time now) noexcept;
   Status send(const hal::CanFrame& frame) noexcept;
   void note_failure(std::string_view what, ErrorCode code) noexcept;
 
-  hal::Backend* backend_;
-  hal::CanConfig can_;
+  hal::SupervisedCanBus bus_;
   std::uint8_t node_id_;
-  std::unique_ptr<hal::CanBus> bus_;
-  Time next_open_{};
   bool bus_fault_ = false;
   bool bus_state_off_ = false;  // the last status() said bus-off or down
   runtime::TextBuffer<191> bus_problem_;

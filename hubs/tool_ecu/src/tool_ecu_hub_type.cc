@@ -7,11 +7,52 @@
 #include "hubrt/hub_api/hub_layout.h"
 #include "hubrt/hub_api/subscriptions.h"
 #include "hubrt/hal/common/threaded_async_modbus.h"
+#include "hubrt/hubs/board_devices.h"
 
 #include "lift_logic.h"
 #include "smart_tool_logic.h"
 
 namespace hubrt::tool_ecu {
+
+Expected<SmartToolDevices> open_smart_tool_devices(const SmartToolSettings& settings,
+                                                   const hal::BoardConfig& board, hal::Backend& backend,
+                                                   Time now) {
+  constexpr std::string_view kOwner = "smart tool";
+  auto forward = hubs::open_board_output(board, backend, kOwner, settings.run_forward, now);
+  if (!forward) return std::move(forward).error();
+  auto reverse = hubs::open_board_output(board, backend, kOwner, settings.run_reverse, now);
+  if (!reverse) return std::move(reverse).error();
+  auto home = hubs::open_board_input(board, backend, "arm position", settings.arm.home, now);
+  if (!home) return std::move(home).error();
+  auto pre_home = hubs::open_board_input(board, backend, "arm position", settings.arm.pre_home, now);
+  if (!pre_home) return std::move(pre_home).error();
+  auto out_of_range = hubs::open_board_input(board, backend, "arm position", settings.arm.out_of_range, now);
+  if (!out_of_range) return std::move(out_of_range).error();
+  auto button_forward = hubs::open_board_input(board, backend, kOwner, settings.button_forward, now);
+  if (!button_forward) return std::move(button_forward).error();
+  auto button_reverse = hubs::open_board_input(board, backend, kOwner, settings.button_reverse, now);
+  if (!button_reverse) return std::move(button_reverse).error();
+  auto torque = hubs::open_board_input(board, backend, kOwner, settings.torque_reached, now);
+  if (!torque) return std::move(torque).error();
+  auto alarm = hubs::open_board_input(board, backend, kOwner, settings.summary_alarm, now);
+  if (!alarm) return std::move(alarm).error();
+  const hal::BoardCanBus* can = board.find_can(settings.bus);
+  if (can == nullptr) {
+    return make_error(ErrorCode::kNotFound,
+                      fmt::format("smart tool: board {} has no CAN bus '{}'", board.file, settings.bus));
+  }
+  hal::SupervisedCanBus bus(backend, ToolController::bus_config(can->config, settings.node_id));
+  bus.open_now(now);
+  return SmartToolDevices{std::move(*forward),
+                          std::move(*reverse),
+                          {std::move(*home), std::move(*pre_home), std::move(*out_of_range)},
+                          std::move(*button_forward),
+                          std::move(*button_reverse),
+                          std::move(*torque),
+                          std::move(*alarm),
+                          std::move(bus)};
+}
+
 namespace {
 
 Error in_node(const config::NodeConfig& node, const Error& error) {
@@ -95,7 +136,9 @@ class ToolEcuHubType final : public hub_api::HubType {
     if (!settings) return std::move(settings).error();
     auto rsp = context.subscriptions.get<hub_msgs_msg_dds__RspState_>(settings->robot_state);
     if (!rsp) return in_node(node, rsp.error());
-    auto logic = SmartToolLogic::create(*settings, context.board, context.backend,
+    auto devices = open_smart_tool_devices(*settings, context.board, context.backend, now);
+    if (!devices) return in_node(node, devices.error());
+    auto logic = SmartToolLogic::create(*settings, std::move(*devices),
                                         std::make_unique<RspToolHolder>(**rsp), now, context.log);
     if (!logic) return in_node(node, logic.error());
     return wiring.add(node, std::move(*logic));

@@ -11,6 +11,7 @@
 
 #include "alloc_counter.h"
 #include "smart_tool_logic.h"
+#include "tool_ecu_hub_type.h"
 
 namespace hubrt::tool_ecu {
 namespace {
@@ -59,7 +60,9 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   hub_api::RemoteState<RspState> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
                                      hub_msgs_msg_dds__RspState__desc, 0};
   static_cast<RspState*>(rsp.sample_data())->tool = dds_string_dup("smart_tool");
-  auto logic = SmartToolLogic::create(*settings, *board, **fake, std::make_unique<RspToolHolder>(rsp),
+  auto devices = open_smart_tool_devices(*settings, *board, **fake, clock.now().mono);
+  ASSERT_TRUE(devices) << devices.error().message;
+  auto logic = SmartToolLogic::create(*settings, std::move(*devices), std::make_unique<RspToolHolder>(rsp),
                                       clock.now().mono);
   ASSERT_TRUE(logic) << logic.error().message;
   RepeatingSource source;

@@ -64,8 +64,8 @@ TEST_F(SmartToolLogicTest, AStatusOlderThanItsValidityIsUnknownAndFreshOneBrings
 TEST_F(SmartToolLogicTest, BeforeTheFirstStatusItsAgeSaysNeverAndItsValuesAreUnknown) {
   tool_->power_off();
   logic_.reset();
-  auto logic = SmartToolLogic::create(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
-                                      clock_.now().mono);
+  auto logic = make_smart_tool_logic(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
+                                     clock_.now().mono);
   ASSERT_TRUE(logic);
   logic_.emplace(std::move(*logic));
   cycles(nullptr, 3);

@@ -190,8 +190,8 @@ TEST_F(SmartToolLogicTest, ANeverReceivedRspStateCountsAsNotAllowed) {
   hub_api::RemoteState<RspState> silent{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
                                         hub_msgs_msg_dds__RspState__desc, 0};
   logic_.reset();  // its lines and bus go first: a line is opened by one owner at a time
-  auto logic = SmartToolLogic::create(settings_, board_, *fake_, std::make_unique<RspToolHolder>(silent),
-                                      clock_.now().mono);
+  auto logic = make_smart_tool_logic(settings_, board_, *fake_, std::make_unique<RspToolHolder>(silent),
+                                     clock_.now().mono);
   ASSERT_TRUE(logic);
   logic_.emplace(std::move(*logic));
   make_ready();
@@ -528,8 +528,8 @@ TEST_F(SmartToolLogicTest, BeforeTheFirstHeartbeatNothingRunsAndTheStateSaysWhy)
   // heartbeat), and the controller boots later.
   tool_->power_off();
   logic_.reset();
-  auto logic = SmartToolLogic::create(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
-                                      clock_.now().mono);
+  auto logic = make_smart_tool_logic(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
+                                     clock_.now().mono);
   ASSERT_TRUE(logic);
   logic_.emplace(std::move(*logic));
   arm_to_operating();

@@ -10,8 +10,18 @@
 #include "hubrt/hal/fake/fake_backend.h"
 
 #include "smart_tool_logic.h"
+#include "tool_ecu_hub_type.h"
 
 namespace hubrt::tool_ecu::testing {
+
+// The node as the hub type builds it: its devices opened from the board, then handed in.
+inline Expected<SmartToolLogic> make_smart_tool_logic(const SmartToolSettings& settings,
+                                                      const hal::BoardConfig& board, hal::Backend& backend,
+                                                      std::unique_ptr<ToolHolderView> holder, Time now) {
+  auto devices = open_smart_tool_devices(settings, board, backend, now);
+  if (!devices) return std::move(devices).error();
+  return SmartToolLogic::create(settings, std::move(*devices), std::move(holder), now);
+}
 
 namespace st = protocol::smart_tool;
 using hal::fake::FakeBackend;
@@ -73,8 +83,8 @@ class SmartToolLogicTest : public ::testing::Test {
     tool_ = fake_->smart_tool("tool_bus");
     ASSERT_NE(tool_, nullptr);
     set_tool_on_robot("smart_tool");
-    auto logic = SmartToolLogic::create(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
-                                        clock_.now().mono);
+    auto logic = make_smart_tool_logic(settings_, board_, *fake_, std::make_unique<RspToolHolder>(rsp_),
+                                       clock_.now().mono);
     ASSERT_TRUE(logic) << logic.error().message;
     logic_.emplace(std::move(*logic));
   }

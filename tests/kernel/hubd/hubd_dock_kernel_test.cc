@@ -47,7 +47,7 @@ using std::chrono::steady_clock;
 
 // Generous: the guest runs under software emulation (TCG) on a 2-core host that may be busy with
 // sanitizer builds; hubd then takes seconds to start and a scheduling hiccup can take a second.
-// It also covers ReopeningInput's 2 s retry interval when a line comes back. These tests check
+// It also covers the supervised devices' back-off (at most 2 s) when a line comes back. These tests check
 // behaviour, not timing.
 constexpr auto kPatience = seconds(30);
 

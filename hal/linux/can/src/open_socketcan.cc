@@ -119,8 +119,8 @@ Expected<std::unique_ptr<CanBus>> open_socketcan(const CanConfig& config) {
   if (controller) warn_on_bitrate_mismatch(config, where);
   const CanBusState initial =
       interface_is_up(fd.get(), config.interface) ? CanBusState::kErrorActive : CanBusState::kDown;
-  return std::unique_ptr<CanBus>(
-      std::make_unique<SocketCanBus>(std::move(fd), config.interface, ifindex, initial, controller));
+  return std::unique_ptr<CanBus>(std::make_unique<SocketCanBus>(std::move(fd), config.interface, ifindex,
+                                                                initial, controller, std::move(filters)));
 }
 
 }  // namespace hubrt::hal::socketcan

@@ -65,11 +65,12 @@ int UniqueFd::release() noexcept {
 }
 
 SocketCanBus::SocketCanBus(UniqueFd fd, std::string interface, unsigned ifindex, CanBusState initial_state,
-                           bool has_controller)
+                           bool has_controller, std::vector<can_filter> filters)
     : fd_(std::move(fd)),
       interface_(std::move(interface)),
       ifindex_(ifindex),
-      has_controller_(has_controller) {
+      has_controller_(has_controller),
+      kernel_filters_(std::move(filters)) {
   status_.state = initial_state;
 }
 
@@ -208,9 +209,14 @@ void SocketCanBus::refresh_link() noexcept {
     return;
   }
   // Up. A re-created interface (vcan deleted and added, USB adapter replugged) has a new index:
-  // a raw socket may be bound again.
+  // a raw socket may be bound again. The kernel dropped the socket's receive filters when the old
+  // interface went (net/can/raw.c, raw_notify() on NETDEV_UNREGISTER: ro->count = 0), so without
+  // setting them again the re-bound socket would receive nothing; set before bind(), which then
+  // registers them (raw_bind() -> raw_enable_allfilters()).
   const unsigned index = ::if_nametoindex(interface_.c_str());
   if (index != 0 && index != ifindex_) {
+    const auto filter_bytes = static_cast<socklen_t>(kernel_filters_.size() * sizeof(can_filter));
+    ::setsockopt(fd_.get(), SOL_CAN_RAW, CAN_RAW_FILTER, kernel_filters_.data(), filter_bytes);
     sockaddr_can addr{};
     addr.can_family = AF_CAN;
     addr.can_ifindex = static_cast<int>(index);

@@ -31,11 +31,12 @@ class UniqueFd {
 
 class SocketCanBus final : public CanBus {
  public:
-  // `fd`: a CAN_RAW socket bound to `interface` (index `ifindex`), options already set.
+  // `fd`: a CAN_RAW socket bound to `interface` (index `ifindex`), options already set, with
+  // `filters` as its CAN_RAW_FILTER (kept: a re-bind must set them again).
   // `has_controller`: a real controller that reports state and counters over netlink (vcan has
   // none, and libsocketcan complains on stderr when asked).
   SocketCanBus(UniqueFd fd, std::string interface, unsigned ifindex, CanBusState initial_state,
-               bool has_controller);
+               bool has_controller, std::vector<can_filter> filters);
 
  private:
   Status do_send(const CanFrame& frame, Duration timeout) noexcept override;
@@ -62,7 +63,7 @@ class SocketCanBus final : public CanBus {
   const bool has_controller_;
   CanBusStatus status_;
   Time next_controller_query_{};
-  std::vector<can_filter> kernel_filters_;  // reused by set_filters
+  std::vector<can_filter> kernel_filters_;  // the filters in force; reused by set_filters
 };
 
 }  // namespace hubrt::hal::socketcan

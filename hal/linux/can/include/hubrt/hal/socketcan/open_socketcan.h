@@ -15,9 +15,9 @@ namespace hubrt::hal::socketcan {
 //
 // Bus state: error frames (read by receive(), and from the head of the queue by status() and by a
 // send() that finds the transmit queue full), the interface flags (down or removed → kDown; a
-// re-created interface is re-bound), and for real controllers libsocketcan's state and error
-// counters (at most every 250 ms; vcan has none, so there the error frames are the only source).
-// While bus-off or down, send() and receive() return kUnavailable.
+// re-created interface is re-bound, its filters set again), and for real controllers libsocketcan's state and
+// error counters (at most every 250 ms; vcan has none, so there the error frames are the only source). While
+// bus-off or down, send() and receive() return kUnavailable.
 //
 // An interface that exists but is down opens fine and reports kDown: systemd-networkd may bring
 // it up later; calls then return kUnavailable until it is up. The bitrate is set by the OS; when
