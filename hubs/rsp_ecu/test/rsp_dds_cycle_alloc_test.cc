@@ -69,7 +69,7 @@ TEST(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
   auto fake = hal::fake::FakeBackend::create(*board, clock);
   ASSERT_TRUE(fake) << fake.error().message;
   DockFeed dock(milliseconds(500));
-  auto logic = RspLogic::create(*settings, *board, **fake, dock.input(), clock.now().mono);
+  auto logic = testing::make_rsp_logic(*settings, *board, **fake, dock.input(), clock.now().mono);
   ASSERT_TRUE(logic) << logic.error().message;
   QueueSource source;
   runtime::NodeOptions options;

@@ -36,7 +36,7 @@ class RunLines {
   [[nodiscard]] RunOutput shown() const noexcept { return shown_; }
   // Both lines open.
   [[nodiscard]] bool all_open() const noexcept {
-    return lines_[0].output != nullptr && lines_[1].output != nullptr;
+    return lines_[0].output.is_open() && lines_[1].output.is_open();
   }
   // Lines not open or whose last write failed.
   void report(runtime::ErrorList& errors) const noexcept;
