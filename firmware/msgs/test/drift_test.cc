@@ -181,6 +181,41 @@ TEST(FindDrift, EveryKindMatchesItsMsgSpelling) {
   EXPECT_THAT(find_drift(msgs, types), ElementsAre());
 }
 
+// Bounds are part of the type: a .msg that drops or changes one drifts (issue 11: the IDL bounds
+// are what Cyclone enforces, so a ROS 2 peer built from the .msg must know them).
+TEST(FindDrift, StringAndSequenceBoundsMustMatch) {
+  constexpr const char* kBounded =
+      "string<=8 label\nuint32 count\nSlot first\nstring<=6[<=3] notes\nSlot[<=4] slots\nint32[<=2] "
+      "numbers\n";
+  const auto with = [](const std::string& bounded) {
+    return std::vector<ros::MsgSpec>{msg("hubrt_test", "Slot", "string<=8 name\nbool occupied\n"),
+                                     msg("hubrt_test", "Bounded", bounded)};
+  };
+  const TypeInfo* types[] = {&type_info_of<hubrt_test_msg_dds__Slot_>(),
+                             &type_info_of<hubrt_test_msg_dds__Bounded_>()};
+  EXPECT_THAT(find_drift(with(kBounded), types), ElementsAre());
+  const std::string where =
+      "hubrt_test/msg/Bounded (Bounded.msg vs IDL hubrt_test::msg::dds_::Bounded_ in "
+      "reflect_test_types.idl): ";
+  EXPECT_THAT(find_drift(with(replace(kBounded, "string<=8 label", "string label")), types),
+              ElementsAre(where + "field 1 'label' (line 1) is string in the .msg but string<=8 in the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "string<=8 label", "string<=9 label")), types),
+      ElementsAre(where + "field 1 'label' (line 1) is string<=9 in the .msg but string<=8 in the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "string<=6[<=3] notes", "string<=6[<=4] notes")), types),
+      ElementsAre(where + "field 4 'notes' (line 4) is string<=6[<=4] in the .msg but string<=6[<=3] in "
+                          "the IDL"));
+  EXPECT_THAT(find_drift(with(replace(kBounded, "string<=6[<=3] notes", "string[<=3] notes")), types),
+              ElementsAre(where + "field 4 'notes' (line 4) is string[<=3] in the .msg but string<=6[<=3] in "
+                                  "the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "Slot[<=4] slots", "Slot[] slots")), types),
+      ElementsAre(HasSubstr("field 5 'slots' (line 5) is hubrt_test/Slot[] in the .msg but "
+                            "hubrt_test/Slot[<=4] in the IDL: a sequence in the .msg, a bounded sequence "
+                            "in the IDL")));
+}
+
 TEST(FindDrift, IdlTypesMustBeRosNamed) {
   const TypeInfo* types[] = {&type_info_of<plain_Point>()};
   EXPECT_THAT(find_drift({}, types),
