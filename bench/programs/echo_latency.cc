@@ -40,9 +40,9 @@ void drain(const Peer& peer) {
 double round_trip(const Peer& peer, const char* action) {
   drain(peer);
   hub_msgs_msg_dds__DockCommand_ command{};
-  command.target_type = const_cast<char*>("dock");  // NOLINT: wire type wants char*
-  command.target_name = const_cast<char*>("dock");  // NOLINT
-  command.action = const_cast<char*>(action);       // NOLINT
+  hubrt::msgs::typed::assign(command.target_type, "dock");
+  hubrt::msgs::typed::assign(command.target_name, "dock");
+  hubrt::msgs::typed::assign(command.action, action);
   const double sent = mono_now();
   if (dds_write(peer.writer, &command) < 0) return -1;
   for (;;) {

@@ -23,13 +23,13 @@ using ::testing::HasSubstr;
 
 constexpr const char* kDockState =
     "StateHeader header\n"
-    "string name\n"
+    "string<=64 name\n"
     "DockCommand echo\n"
     "bool fresh_msg\n"
     "float32 t_plus\n"
     "bool got_reset\n"
-    "string[] error_list\n"
-    "DockSlot[] slots\n";
+    "string<=191[<=16] error_list\n"
+    "DockSlot[<=16] slots\n";
 
 constexpr const char* kWhere =
     "hub_msgs/msg/DockState (DockState.msg vs IDL hub_msgs::msg::dds_::DockState_ in dock.idl): ";
@@ -50,8 +50,8 @@ std::vector<ros::MsgSpec> package_with_dock_state(const std::string& dock_state)
           "byte OK=0\nbyte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n"),
       msg("diagnostic_msgs", "DiagnosticArray", "std_msgs/Header header\nDiagnosticStatus[] status\n"),
       msg("hub_msgs", "StateHeader", "builtin_interfaces/Time stamp\nuint64 seq\n"),
-      msg("hub_msgs", "DockCommand", "string target_type\nstring target_name\nstring action\n"),
-      msg("hub_msgs", "DockSlot", "string name\nbool occupied\n"),
+      msg("hub_msgs", "DockCommand", "string<=64 target_type\nstring<=64 target_name\nstring<=64 action\n"),
+      msg("hub_msgs", "DockSlot", "string<=64 name\nbool occupied\n"),
       msg("hub_msgs", "DockState", dock_state),
   };
 }
@@ -91,20 +91,25 @@ TEST(FindDrift, ChangedPrimitiveType) {
 
 TEST(FindDrift, SequenceVersusSingleValue) {
   EXPECT_THAT(
-      drift(package_with_dock_state(replace(kDockState, "string[] error_list", "string error_list"))),
-      ElementsAre(std::string(kWhere) +
-                  "field 7 'error_list' (line 7) is string in the .msg but string[] in the IDL: a single "
-                  "value in the .msg, a sequence in the IDL"));
+      drift(package_with_dock_state(
+          replace(kDockState, "string<=191[<=16] error_list", "string<=191 error_list"))),
+      ElementsAre(
+          std::string(kWhere) +
+          "field 7 'error_list' (line 7) is string<=191 in the .msg but string<=191[<=16] in the IDL: a "
+          "single value in the .msg, a bounded sequence in the IDL"));
   EXPECT_THAT(
-      drift(package_with_dock_state(replace(kDockState, "DockSlot[] slots", "DockSlot[4] slots"))),
-      ElementsAre(HasSubstr("is hub_msgs/DockSlot[4] in the .msg but hub_msgs/DockSlot[] in the IDL: a "
-                            "fixed-size array in the .msg, a sequence in the IDL")));
+      drift(package_with_dock_state(replace(kDockState, "DockSlot[<=16] slots", "DockSlot[4] slots"))),
+      ElementsAre(HasSubstr("is hub_msgs/DockSlot[4] in the .msg but hub_msgs/DockSlot[<=16] in the IDL: a "
+                            "fixed-size array in the .msg, a bounded sequence in the IDL")));
 }
 
 TEST(FindDrift, BoundedStringVersusUnbounded) {
-  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string name", "string<=16 name"))),
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string<=64 name", "string<=16 name"))),
               ElementsAre(std::string(kWhere) +
-                          "field 2 'name' (line 2) is string<=16 in the .msg but string in the IDL"));
+                          "field 2 'name' (line 2) is string<=16 in the .msg but string<=64 in the IDL"));
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string<=64 name", "string name"))),
+              ElementsAre(std::string(kWhere) +
+                          "field 2 'name' (line 2) is string in the .msg but string<=64 in the IDL"));
 }
 
 TEST(FindDrift, NestedTypeNamesIncludingTheBuiltinTimeMapping) {
@@ -135,9 +140,9 @@ TEST(FindDrift, TypeOnOneSideOnly) {
 }
 
 TEST(FindDrift, MissingAndExtraFields) {
-  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "DockSlot[] slots\n", ""))),
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "DockSlot[<=16] slots\n", ""))),
               ElementsAre(std::string(kWhere) +
-                          "IDL field 8 'slots' (hub_msgs/DockSlot[]) is missing from the .msg"));
+                          "IDL field 8 'slots' (hub_msgs/DockSlot[<=16]) is missing from the .msg"));
   EXPECT_THAT(drift(package_with_dock_state(std::string(kDockState) + "uint8 battery\n")),
               ElementsAre(std::string(kWhere) + ".msg field 9 'battery' (uint8, line 9) is not in the IDL"));
 }

@@ -63,17 +63,21 @@ TEST(GeneratedTables, DockStateKindsAndNesting) {
   EXPECT_EQ(field(t, "t_plus").kind, FieldKind::kFloat32);
   EXPECT_EQ(field(t, "error_list").kind, FieldKind::kSequence);
   EXPECT_EQ(field(t, "error_list").element_kind, FieldKind::kString);
-  EXPECT_EQ(field(t, "error_list").element_size, sizeof(char*));
+  EXPECT_EQ(field(t, "error_list").element_size, 192u) << "string<191>: char[192] inline";
+  EXPECT_EQ(field(t, "error_list").string_bound, 191u);
+  EXPECT_EQ(field(t, "error_list").bound, 16u);
+  EXPECT_EQ(field(t, "name").string_bound, 64u);
   EXPECT_EQ(field(t, "slots").element_kind, FieldKind::kStruct);
   EXPECT_EQ(field(t, "slots").nested, &type_info_of<hub_msgs_msg_dds__DockSlot_>());
   EXPECT_EQ(field(t, "slots").element_size, sizeof(hub_msgs_msg_dds__DockSlot_));
-  EXPECT_EQ(field(t, "slots").bound, 0u);
+  EXPECT_EQ(field(t, "slots").bound, 16u);
 
   const TypeInfo& header = type_info_of<hub_msgs_msg_dds__StateHeader_>();
   EXPECT_EQ(field_names(header), (std::vector<std::string>{"stamp", "seq"}));
   EXPECT_EQ(field(header, "stamp").nested, &type_info_of<builtin_interfaces_msg_dds__Time_>());
   EXPECT_EQ(field(header, "seq").kind, FieldKind::kUInt64);
-  EXPECT_EQ(describe_type(field(t, "slots")), "sequence<hub_msgs/msg/DockSlot>");
+  EXPECT_EQ(describe_type(field(t, "slots")), "sequence<hub_msgs/msg/DockSlot, 16>");
+  EXPECT_EQ(describe_type(field(t, "error_list")), "sequence<string<191>, 16>");
 }
 
 TEST(GeneratedTables, EveryKindMapsToItsCType) {

@@ -34,7 +34,7 @@ TEST(SetField, DottedPathIntoANestedStruct) {
   EXPECT_EQ(s->header.seq, std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(s->t_plus, 1.25f);
   EXPECT_TRUE(s->fresh_msg);
-  EXPECT_EQ(s->echo.target_name, nullptr) << "untouched fields stay as they were";
+  EXPECT_STREQ(s->echo.target_name, "") << "untouched fields stay as they were";
 }
 
 TEST(SetField, IndexAtTheLengthAppendsOtherIndicesReplace) {

@@ -45,7 +45,8 @@ class RspEcuHubType final : public assembly::HubType {
     for (const config::NodeConfig& node : config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock = assembly::Subscriptions::check<dock_ecu::DockState>(config, settings->dock_subscription);
+      auto dock =
+          assembly::Subscriptions::check<hub_msgs::DockStateView>(config, settings->dock_subscription);
       if (!dock) return dock;
       auto wired = assembly::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
       if (!wired) return wired;
@@ -60,7 +61,7 @@ class RspEcuHubType final : public assembly::HubType {
     for (const config::NodeConfig& node : context.config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock = context.subscriptions.get<dock_ecu::DockState>(settings->dock_subscription);
+      auto dock = context.subscriptions.get<hub_msgs::DockStateView>(settings->dock_subscription);
       if (!dock) return std::move(dock).error();
       auto logic = RspLogic::create(*settings, context.board, context.backend, **dock, now);
       if (!logic) {

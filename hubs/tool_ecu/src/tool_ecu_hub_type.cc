@@ -60,7 +60,7 @@ class ToolEcuHubType final : public assembly::HubType {
       if (node.type == SmartToolLogic::kType) {
         auto settings = parse_smart_tool_settings(node);
         if (!settings) return std::move(settings).error();
-        auto rsp = assembly::Subscriptions::check<hub_msgs_msg_dds__RspState_>(config, settings->robot_state);
+        auto rsp = assembly::Subscriptions::check<hub_msgs::RspStateView>(config, settings->robot_state);
         if (!rsp) return in_node(node, rsp.error());
         wired = assembly::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
       } else {
@@ -92,7 +92,7 @@ class ToolEcuHubType final : public assembly::HubType {
                                        assembly::NodeWiring<ToolEcuTypes>& wiring, Time now) {
     auto settings = parse_smart_tool_settings(node);
     if (!settings) return std::move(settings).error();
-    auto rsp = context.subscriptions.get<hub_msgs_msg_dds__RspState_>(settings->robot_state);
+    auto rsp = context.subscriptions.get<hub_msgs::RspStateView>(settings->robot_state);
     if (!rsp) return in_node(node, rsp.error());
     auto logic = SmartToolLogic::create(*settings, context.board, context.backend,
                                         std::make_unique<RspToolHolder>(**rsp), now, context.log);

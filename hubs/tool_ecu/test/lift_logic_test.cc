@@ -37,12 +37,12 @@ struct Order {
   std::string target_name = "lift";
   std::string target_type = "lift";
 
-  [[nodiscard]] LiftCommand wire() const {
-    LiftCommand command{};
-    command.target_type = const_cast<char*>(target_type.c_str());  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>(target_name.c_str());  // NOLINT
-    command.action = const_cast<char*>(action.c_str());            // NOLINT
-    command.position = const_cast<char*>(position.c_str());        // NOLINT
+  [[nodiscard]] hub_msgs::LiftCommand message() const {
+    hub_msgs::LiftCommand command;
+    command.set_target_type(target_type);
+    command.set_target_name(target_name);
+    command.set_action(action);
+    command.set_position(position);
     return command;
   }
 };
@@ -103,11 +103,12 @@ class LiftLogicTest : public ::testing::Test {
   // One cycle at the current manual time, as the Node runs it.
   void cycle(const Order* order) {
     const Time now = clock_.now().mono;
-    if (order != nullptr) command_ = order->wire();
+    if (order != nullptr) command_ = order->message();
     logic_->read_inputs(now);
-    logic_->update(order == nullptr ? nullptr : &command_, now);
+    const hub_msgs::LiftCommandView in_force = command_.view();
+    logic_->update(order == nullptr ? nullptr : &in_force, now);
     errors_.clear();
-    state_ = LiftState{};
+    state_ = hub_msgs::LiftState();
     logic_->report(state_, errors_, now);
   }
   // Advances the manual clock one step, lets the worker read the drive at that time (two rounds:
@@ -153,8 +154,8 @@ class LiftLogicTest : public ::testing::Test {
   hal::fake::LiftDrive* drive_ = nullptr;
   hal::fake::LiftDriveServer* server_ = nullptr;
   std::optional<LiftLogic> logic_;
-  LiftCommand command_{};
-  LiftState state_{};
+  hub_msgs::LiftCommand command_;
+  hub_msgs::LiftState state_;
   runtime::ErrorList errors_;
 };
 
@@ -162,28 +163,28 @@ TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
   start();
   const Order work = move("work");
   step(&work);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_STREQ(state_.target, "work");
-  EXPECT_FLOAT_EQ(state_.target_mm, 120.0F);
-  ASSERT_TRUE(step_until(&work, [&] { return state_.moving; })) << errors();
-  EXPECT_TRUE(state_.enabled);
-  EXPECT_FLOAT_EQ(state_.speed_mm_s, 100.0F) << "the hub file's speed, up";
-  EXPECT_STREQ(state_.at, "");
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
-  EXPECT_TRUE(state_.in_position);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_NEAR(state_.position_mm, 120.0, 0.5);
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_EQ(state_.target(), "work");
+  EXPECT_FLOAT_EQ(state_.target_mm(), 120.0F);
+  ASSERT_TRUE(step_until(&work, [&] { return state_.moving(); })) << errors();
+  EXPECT_TRUE(state_.enabled());
+  EXPECT_FLOAT_EQ(state_.speed_mm_s(), 100.0F) << "the hub file's speed, up";
+  EXPECT_EQ(state_.at(), "");
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
+  EXPECT_TRUE(state_.in_position());
+  EXPECT_FALSE(state_.moving());
+  EXPECT_NEAR(state_.position_mm(), 120.0, 0.5);
   EXPECT_NEAR(drive_->position_mm(clock_.now().mono), 120.0, 0.5);
   EXPECT_TRUE(errors_.empty()) << errors();
 
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at) == "home"; })) << errors();
-  EXPECT_NEAR(state_.position_mm, 380.0, 0.5);
+  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at()) == "home"; })) << errors();
+  EXPECT_NEAR(state_.position_mm(), 380.0, 0.5);
   const Order floating = move("float");
-  ASSERT_TRUE(step_until(&floating, [&] { return state_.moving; }));
-  EXPECT_FLOAT_EQ(state_.speed_mm_s, -100.0F) << "down";
-  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at) == "float"; }));
-  EXPECT_NEAR(state_.position_mm, 250.0, 0.5);
+  ASSERT_TRUE(step_until(&floating, [&] { return state_.moving(); }));
+  EXPECT_FLOAT_EQ(state_.speed_mm_s(), -100.0F) << "down";
+  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at()) == "float"; }));
+  EXPECT_NEAR(state_.position_mm(), 250.0, 0.5);
 }
 
 TEST_F(LiftLogicTest, TheDriveGetsItsSpeedAndWatchdogFromTheHubFile) {
@@ -194,46 +195,46 @@ TEST_F(LiftLogicTest, TheDriveGetsItsSpeedAndWatchdogFromTheHubFile) {
   EXPECT_EQ(registers.holding[ld::holding::kSpeed], 100);
   EXPECT_EQ(registers.holding[ld::holding::kWatchdogMs], 1000);
   EXPECT_EQ(registers.control_word(), ld::control::kStop) << "stop never switches the power stage on";
-  EXPECT_FALSE(state_.enabled);
+  EXPECT_FALSE(state_.enabled());
 }
 
 TEST_F(LiftLogicTest, StopHaltsAndHolds) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm > 50.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm() > 50.0F; }));
   const Order stop = action("stop");
   step(&stop);
   step(&stop);
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(stop, 5);
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_STREQ(state_.target, "");
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_EQ(state_.target(), "");
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
 }
 
 TEST_F(LiftLogicTest, NoCommandInForceStopsTheLift) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm > 50.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm() > 50.0F; }));
   step(nullptr);
   step(nullptr);
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   for (int i = 0; i < 5; ++i) step(nullptr);
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
-  EXPECT_FALSE(state_.moving);
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
+  EXPECT_FALSE(state_.moving());
 }
 
 TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   logic_->enter_safe_state();
   ASSERT_TRUE(
       wait_worker([](const LiftSnapshot& s) { return (s.written_control & ld::control::kStop) != 0; }));
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
 
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   EXPECT_EQ(drive_control_word() & ld::control::kStop, 0);
   logic_.reset();  // the worker writes "stop" on its way out
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
@@ -242,65 +243,65 @@ TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
 TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   drive_->inject_overcurrent(clock_.now().mono);
   step(&home);
-  EXPECT_TRUE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 1);
-  EXPECT_STREQ(state_.fault_text, "overcurrent");
-  EXPECT_FALSE(state_.enabled);
+  EXPECT_TRUE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 1);
+  EXPECT_EQ(state_.fault_text(), "overcurrent");
+  EXPECT_FALSE(state_.enabled());
   EXPECT_NE(errors().find("lift drive fault 1 (overcurrent); lift stopped; send reset to clear"),
             std::string::npos)
       << errors();
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(home, 5);  // the planner keeps asking: nothing moves
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
 
   reset_command();
   ASSERT_TRUE(step_until(
-      &home, [&] { return !state_.fault; }, 10))
+      &home, [&] { return !state_.fault(); }, 10))
       << "the reset pulse reached the drive";
   // The reset command took effect; the planner's next move is fresh: the drive needs an enable edge.
   const Order floating = move("float");
-  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at) == "float"; })) << errors();
+  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at()) == "float"; })) << errors();
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
 TEST_F(LiftLogicTest, AJammedLoadTripsAFollowingErrorAndRecoversAfterReset) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   drive_->set_blocked(true, clock_.now().mono);
-  ASSERT_TRUE(step_until(&home, [&] { return state_.fault; }));
-  EXPECT_EQ(state_.fault_code, 2);
-  EXPECT_STREQ(state_.fault_text, "following error");
+  ASSERT_TRUE(step_until(&home, [&] { return state_.fault(); }));
+  EXPECT_EQ(state_.fault_code(), 2);
+  EXPECT_EQ(state_.fault_text(), "following error");
   drive_->set_blocked(false, clock_.now().mono);
   steps(home, 3);
-  EXPECT_TRUE(state_.fault) << "latched in the drive until reset";
+  EXPECT_TRUE(state_.fault()) << "latched in the drive until reset";
   reset_command();
-  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at) == "home"; })) << errors();
+  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at()) == "home"; })) << errors();
 }
 
 TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
   start();
   const Order work = move("work");
-  ASSERT_TRUE(step_until(&work, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&work, [&] { return state_.moving(); }));
   drive_->set_overtemperature(true, clock_.now().mono);
   ASSERT_TRUE(step_until(
-      &work, [&] { return state_.fault; }, 5));
+      &work, [&] { return state_.fault(); }, 5));
   reset_command();
   steps(work, 3);
-  EXPECT_EQ(state_.fault_code, 3) << "refused while still hot";
+  EXPECT_EQ(state_.fault_code(), 3) << "refused while still hot";
   EXPECT_NE(errors().find("lift drive fault 3 (overtemperature)"), std::string::npos) << errors();
   drive_->set_overtemperature(false, clock_.now().mono);
   reset_command();
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
 }
 
 TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   server_->set_answering(false);
   ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }))
       << "the worker's call timed out";
@@ -313,7 +314,7 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
     // a blocking Modbus call would take the 100 ms response timeout at least.
     EXPECT_LT(std::chrono::steady_clock::now() - started, milliseconds(50));
   }
-  EXPECT_FALSE(state_.drive_online);
+  EXPECT_FALSE(state_.drive_online());
   EXPECT_NE(errors().find("not answering for 0.6"), std::string::npos) << errors();
   EXPECT_NE(errors().find("limit 0.50 s, last error: timeout); lift state unknown"), std::string::npos)
       << errors();
@@ -322,16 +323,16 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   ASSERT_TRUE(wait_worker(
       [&](const LiftSnapshot& s) { return s.failures_in_a_row == 0 && s.read_at >= clock_.now().mono; }));
   step(&home);
-  EXPECT_TRUE(state_.drive_online);
+  EXPECT_TRUE(state_.drive_online());
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
       << errors();
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(home, 3);
-  EXPECT_FLOAT_EQ(state_.position_mm, held) << "latched: no motion until reset";
+  EXPECT_FLOAT_EQ(state_.position_mm(), held) << "latched: no motion until reset";
   reset_command();
   EXPECT_TRUE(errors_.empty()) << errors();
   const Order work = move("work");
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
 }
 
 // The drive stops answering mid-move. Its last reading (moving up at 100 mm/s) holds for
@@ -340,32 +341,32 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
 TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirmsTheLift) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving && state_.position_mm > 20.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving() && state_.position_mm() > 20.0F; }));
   server_->set_answering(false);
   ASSERT_TRUE(wait_worker([](const LiftSnapshot& s) { return s.failures_in_a_row > 0; }));
   const Time last_read = logic_->snapshot().read_at;
-  const float last_seen_mm = state_.position_mm;
+  const float last_seen_mm = state_.position_mm();
 
   clock_.set(last_read + milliseconds(500));  // the reading's last valid moment
   cycle(&home);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 500u);
-  EXPECT_TRUE(state_.moving) << "still within its validity";
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 500u);
+  EXPECT_TRUE(state_.moving()) << "still within its validity";
 
   clock_.set(last_read + milliseconds(501));
   cycle(&home);
-  EXPECT_FALSE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 501u);
-  EXPECT_FALSE(state_.moving) << "never true from a stale reading";
-  EXPECT_FALSE(state_.enabled);
-  EXPECT_FALSE(state_.in_position);
-  EXPECT_FALSE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 0);
-  EXPECT_STREQ(state_.fault_text, "unknown");
-  EXPECT_STREQ(state_.at, "");
-  EXPECT_EQ(state_.position_mm, 0.0F);
-  EXPECT_EQ(state_.speed_mm_s, 0.0F);
-  EXPECT_STREQ(state_.target, "home") << "the command's target is the hub's own, not a reading";
+  EXPECT_FALSE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 501u);
+  EXPECT_FALSE(state_.moving()) << "never true from a stale reading";
+  EXPECT_FALSE(state_.enabled());
+  EXPECT_FALSE(state_.in_position());
+  EXPECT_FALSE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 0);
+  EXPECT_EQ(state_.fault_text(), "unknown");
+  EXPECT_EQ(state_.at(), "");
+  EXPECT_EQ(state_.position_mm(), 0.0F);
+  EXPECT_EQ(state_.speed_mm_s(), 0.0F);
+  EXPECT_EQ(state_.target(), "home") << "the command's target is the hub's own, not a reading";
   EXPECT_EQ(errors().find("stopped"), std::string::npos) << "nobody knows it stopped: " << errors();
   EXPECT_NE(errors().find(fmt::format("lift motion unknown: last seen at {:.1f} mm, moving; the drive's own "
                                       "watchdog stops it 1000 ms after the last request it got",
@@ -378,8 +379,8 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   // Its watchdog trips 1000 ms after the last request it got (about the last read).
   clock_.set(last_read + milliseconds(1200));
   cycle(&home);
-  EXPECT_EQ(state_.reading_age_ms, 1200u);
-  EXPECT_FALSE(state_.moving);
+  EXPECT_EQ(state_.reading_age_ms(), 1200u);
+  EXPECT_FALSE(state_.moving());
   const auto drive = drive_->read(clock_.now().mono);
   EXPECT_EQ(drive.input[ld::input::kFaultCode], static_cast<std::uint16_t>(ld::FaultCode::kWatchdog));
   EXPECT_EQ(drive.input[ld::input::kStatusWord] & ld::status::kMoving, 0);
@@ -387,14 +388,14 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   // A fresh reading confirms it: stopped by its watchdog, values current again.
   server_->set_answering(true);
   step(&home);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_LE(state_.reading_age_ms, 100u);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_TRUE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 4);
-  EXPECT_STREQ(state_.fault_text, "communication watchdog");
-  EXPECT_NEAR(state_.position_mm, drive_->position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
-  EXPECT_GT(state_.position_mm, last_seen_mm + 80.0F) << "where the drive went on its own";
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_LE(state_.reading_age_ms(), 100u);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_TRUE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 4);
+  EXPECT_EQ(state_.fault_text(), "communication watchdog");
+  EXPECT_NEAR(state_.position_mm(), drive_->position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
+  EXPECT_GT(state_.position_mm(), last_seen_mm + 80.0F) << "where the drive went on its own";
   EXPECT_EQ(errors().find("lift motion unknown"), std::string::npos) << errors();
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
       << errors();
@@ -410,33 +411,33 @@ TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
   EXPECT_TRUE(errors_.empty()) << "not yet: " << errors();
   clock_.advance(milliseconds(200));
   cycle(&home);
-  EXPECT_FALSE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, kNeverRead);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_STREQ(state_.fault_text, "unknown");
+  EXPECT_FALSE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), kNeverRead);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_EQ(state_.fault_text(), "unknown");
   EXPECT_NE(errors().find("no answer since start (last error: timeout); lift state unknown"),
             std::string::npos)
       << errors();
   // A drive that comes up after the hub is normal operation: not latched.
   server_->set_answering(true);
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; })) << errors();
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); })) << errors();
 }
 
 TEST_F(LiftLogicTest, BadMoveCommandsAreRejectedWithTheirReason) {
   start();
   runtime::Problem problem;
-  LiftCommand command{};
+  hub_msgs::LiftCommand command;
   const Order up = move("attic");
-  command = up.wire();
+  command = up.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(), "unknown position 'attic' (expected one of: home, float, work)");
   const Order empty = move("");
-  command = empty.wire();
+  command = empty.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(), "unknown position '' (expected one of: home, float, work)");
   Order stop = action("stop");
   stop.position = "attic";
-  command = stop.wire();
+  command = stop.message();
   EXPECT_TRUE(logic_->validate(command, problem)) << "stop ignores the position";
 }
 

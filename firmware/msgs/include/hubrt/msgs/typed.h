@@ -41,7 +41,7 @@ std::string_view view(const char (&stored)[Size]) noexcept {
 template <std::size_t Size>
 bool assign(char (&stored)[Size], std::string_view text) noexcept {
   const std::string_view kept = utf8_prefix(text, Size - 1);
-  std::memcpy(stored, kept.data(), kept.size());
+  if (!kept.empty()) std::memcpy(stored, kept.data(), kept.size());  // an empty view may hold nullptr
   std::memset(stored + kept.size(), 0, Size - kept.size());
   return kept.size() == text.size();
 }
