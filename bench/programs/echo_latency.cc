@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hubrt/msgs/typed.h"
+
 #include "bench_common.h"
 #include "dock.h"
 #include "raw_dds.h"

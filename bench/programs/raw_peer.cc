@@ -15,6 +15,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hubrt/msgs/typed.h"
+
 #include "dock.h"
 #include "raw_dds.h"
 
