@@ -83,10 +83,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (const char* action = kActions[record[2] & 0x03]; action != nullptr) {
         order.action = action;
         order.position = positions[std::min<std::size_t>((record[2] >> 2) & 0x07, 3)];
-        order.wire.target_type = order.type.data();
-        order.wire.target_name = order.target.data();
-        order.wire.action = order.action.data();
-        order.wire.position = order.position.data();
+        hubrt::msgs::typed::assign(order.wire.target_type, order.type);
+        hubrt::msgs::typed::assign(order.wire.target_name, order.target);
+        hubrt::msgs::typed::assign(order.wire.action, order.action);
+        hubrt::msgs::typed::assign(order.wire.position, order.position);
         source.post(&order.wire);
       }
       node.step(clock.now());

@@ -47,11 +47,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string type(SmartToolLogic::kType);
   std::string target = name;
   hubrt::tool_ecu::SmartToolCommand command{};
-  command.target_type = type.data();
-  command.target_name = target.data();
-  command.action = action.data();
+  hubrt::msgs::typed::assign(command.target_type, type);
+  hubrt::msgs::typed::assign(command.target_name, target);
+  hubrt::msgs::typed::assign(command.action, action);
   command.run_id = 1;
-  command.program = program.data();
+  hubrt::msgs::typed::assign(command.program, program);
 
   hubrt::fuzz::OneShotSource<hubrt::tool_ecu::SmartToolCommand> source;
   hubrt::fuzz::DiscardingSink<hubrt::tool_ecu::SmartToolState> sink;

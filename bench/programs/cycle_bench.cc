@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/assembly/hub_assembly.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/test_support/test_domain.h"
 
 #include "alloc_counter.h"
@@ -62,10 +63,10 @@ class Planner {
  private:
   void run() {
     hub_msgs_msg_dds__DockCommand_ command{};
-    command.target_type = const_cast<char*>("dock");  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>("dock");  // NOLINT
+    hubrt::msgs::typed::assign(command.target_type, "dock");
+    hubrt::msgs::typed::assign(command.target_name, "dock");
     for (int i = 0; !stop_; ++i) {
-      command.action = const_cast<char*>(changing_ && i % 2 == 1 ? "reset" : "monitor");  // NOLINT
+      hubrt::msgs::typed::assign(command.action, changing_ && i % 2 == 1 ? "reset" : "monitor");
       dds_write(writer_, &command);
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
@@ -211,11 +212,12 @@ void BM_RawStateWrite(benchmark::State& state) {
       return state.SkipWithError("no matched reader");
     state.SetLabel(Subscriber::label(state.range(0)));
     std::array<hub_msgs_msg_dds__DockSlot_, 4> slots{};
-    for (auto& slot : slots) slot.name = const_cast<char*>("smart_tool");  // NOLINT: wire type wants char*
+    for (auto& slot : slots) hubrt::msgs::typed::assign(slot.name, "smart_tool");
     hub_msgs_msg_dds__DockState_ sample{};
-    sample.name = const_cast<char*>("dock");                                        // NOLINT
-    sample.echo.target_type = sample.echo.target_name = const_cast<char*>("dock");  // NOLINT
-    sample.echo.action = const_cast<char*>("monitor");                              // NOLINT
+    hubrt::msgs::typed::assign(sample.name, "dock");
+    hubrt::msgs::typed::assign(sample.echo.target_type, "dock");
+    hubrt::msgs::typed::assign(sample.echo.target_name, "dock");
+    hubrt::msgs::typed::assign(sample.echo.action, "monitor");
     sample.slots._buffer = slots.data();
     sample.slots._length = sample.slots._maximum = 4;
     // As hubrt's Writer does: the keyless topic's one instance registered up front, so that Cyclone

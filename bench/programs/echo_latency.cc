@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hubrt/msgs/typed.h"
+
 #include "bench_common.h"
 #include "dock.h"
 #include "raw_dds.h"
@@ -40,9 +42,9 @@ void drain(const Peer& peer) {
 double round_trip(const Peer& peer, const char* action) {
   drain(peer);
   hub_msgs_msg_dds__DockCommand_ command{};
-  command.target_type = const_cast<char*>("dock");  // NOLINT: wire type wants char*
-  command.target_name = const_cast<char*>("dock");  // NOLINT
-  command.action = const_cast<char*>(action);       // NOLINT
+  hubrt::msgs::typed::assign(command.target_type, "dock");
+  hubrt::msgs::typed::assign(command.target_name, "dock");
+  hubrt::msgs::typed::assign(command.action, action);
   const double sent = mono_now();
   if (dds_write(peer.writer, &command) < 0) return -1;
   for (;;) {

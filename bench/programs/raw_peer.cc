@@ -15,6 +15,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hubrt/msgs/typed.h"
+
 #include "dock.h"
 #include "raw_dds.h"
 
@@ -32,11 +34,8 @@ struct StateShape {
   hub_msgs_msg_dds__DockState_ state{};
   StateShape() {
     static const char* names[] = {"ladder_frame_tool", "filter_tool", "smart_tool", "spare"};
-    for (std::size_t i = 0; i < slots.size(); ++i) slots[i].name = const_cast<char*>(names[i]);  // NOLINT
-    state.name = const_cast<char*>("dock");                                                      // NOLINT
-    state.echo.target_type = const_cast<char*>("");                                              // NOLINT
-    state.echo.target_name = const_cast<char*>("");                                              // NOLINT
-    state.echo.action = const_cast<char*>("");                                                   // NOLINT
+    for (std::size_t i = 0; i < slots.size(); ++i) hubrt::msgs::typed::assign(slots[i].name, names[i]);
+    hubrt::msgs::typed::assign(state.name, "dock");
     state.slots._buffer = slots.data();
     state.slots._length = state.slots._maximum = static_cast<std::uint32_t>(slots.size());
   }

@@ -19,21 +19,24 @@ namespace hubrt::fuzz {
 template <class HubTypes>
 class HubLayoutUnderFuzz {
  public:
-  using HubCommand = typename HubTypes::Command;
-  using HubState = typename HubTypes::State;
+  using HubCommand = msgs::typed::wire_t<typename HubTypes::Command>;
+  using HubState = msgs::typed::wire_t<typename HubTypes::State>;
 
   // Adds node `name` (a field of the hub-level types) running `logic`, as NodeWiring::add does.
   template <runtime::NodeLogic Logic>
   void add(const std::string& name, Logic logic) {
     auto command_offset = hub_api::detail::struct_field_offset(
-        msgs::type_info_of<HubCommand>(), name, msgs::type_info_of<typename Logic::Command>(), "fuzz");
+        msgs::type_info_of<HubCommand>(), name,
+        msgs::type_info_of<msgs::typed::wire_t<typename Logic::Command>>(), "fuzz");
     if (!command_offset) setup_failed(command_offset.error().message);
     auto state_offset = hub_api::detail::struct_field_offset(
-        msgs::type_info_of<HubState>(), name, msgs::type_info_of<typename Logic::State>(), "fuzz");
+        msgs::type_info_of<HubState>(), name,
+        msgs::type_info_of<msgs::typed::wire_t<typename Logic::State>>(), "fuzz");
     if (!state_offset) setup_failed(state_offset.error().message);
     auto route = std::make_unique<hub_api::detail::NodeRoute<Logic>>(*command_offset, *state_offset, name);
-    auto node = std::make_unique<runtime::Node<Logic>>(options(name), std::move(logic), route->source(),
-                                                       route->sink(), ops_of<typename Logic::Command>());
+    auto node = std::make_unique<runtime::Node<Logic>>(
+        options(name), std::move(logic), route->source(), route->sink(),
+        ops_of<msgs::typed::wire_t<typename Logic::Command>>());
     route->attach(*node);
     routes_.push_back(std::move(route));
     nodes_.push_back(std::move(node));

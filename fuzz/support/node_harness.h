@@ -16,6 +16,7 @@
 
 #include "hubrt/base/time.h"
 #include "hubrt/msgs/type_info.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/ports.h"
 #include "hubrt/runtime/reflected_message_ops.h"
@@ -65,8 +66,8 @@ template <runtime::NodeLogic Logic, class MakeLogic>
 void run_command(std::span<const std::uint8_t> input, const std::string& node_name, ManualClock& clock,
                  MakeLogic&& make_logic,
                  runtime::Addressing addressing = runtime::Addressing::kIgnoreOthers) {
-  using Command = typename Logic::Command;
-  using State = typename Logic::State;
+  using Command = msgs::typed::wire_t<typename Logic::Command>;  // the C structs behind the typed classes
+  using State = msgs::typed::wire_t<typename Logic::State>;
   const CdrDecoder& decoder = CdrDecoder::of(msgs::type_info_of<Command>());
   Command command{};
   if (!decoder.decode(input, &command)) return;

@@ -176,22 +176,22 @@ int main(int argc, char** argv) {
                        R"({"target_type":"lift","target_name":"lift","action":"stop"})");
   command<LiftCommand>("lift_command", "reset",
                        R"({"target_type":"lift","target_name":"lift","action":"reset"})");
-  command<hubrt::dock_ecu::DockEcuTypes::Command>(
+  command<hubrt::dock_ecu::DockEcuTypes::Command::Wire>(
       "dock_ecu_command", "apply-monitor",
       R"({"target_type":"dock_ecu","target_name":"dock_ecu","action":"apply","dock":{"action":"monitor"}})");
-  command<hubrt::dock_ecu::DockEcuTypes::Command>(
+  command<hubrt::dock_ecu::DockEcuTypes::Command::Wire>(
       "dock_ecu_command", "apply-named",
       R"({"target_type":"dock_ecu","target_name":"dock_ecu","action":"apply","dock":{"target_type":"dock","target_name":"dock","action":"reset"}})");
-  command<hubrt::rsp_ecu::RspEcuTypes::Command>(
+  command<hubrt::rsp_ecu::RspEcuTypes::Command::Wire>(
       "rsp_ecu_command", "apply-lock",
       R"({"target_type":"rsp_ecu","target_name":"rsp_ecu","action":"apply","rsp":{"action":"lock","gripper":"grab"}})");
-  command<hubrt::rsp_ecu::RspEcuTypes::Command>(
+  command<hubrt::rsp_ecu::RspEcuTypes::Command::Wire>(
       "rsp_ecu_command", "reset",
       R"({"target_type":"rsp_ecu","target_name":"rsp_ecu","action":"reset","rsp":{"action":"reset"}})");
-  command<hubrt::tool_ecu::ToolEcuTypes::Command>(
+  command<hubrt::tool_ecu::ToolEcuTypes::Command::Wire>(
       "tool_ecu_command", "apply-tighten-move",
       R"({"target_type":"tool_ecu","target_name":"tool_ecu","action":"apply","tool":{"action":"tighten","run_id":3,"program":"pipe_plate"},"lift":{"action":"move","position":"float"}})");
-  command<hubrt::tool_ecu::ToolEcuTypes::Command>(
+  command<hubrt::tool_ecu::ToolEcuTypes::Command::Wire>(
       "tool_ecu_command", "apply-idle-stop",
       R"({"target_type":"tool_ecu","target_name":"tool_ecu","action":"apply","tool":{"action":"idle"},"lift":{"action":"stop"}})");
   can_seeds();

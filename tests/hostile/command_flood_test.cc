@@ -18,6 +18,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 
 #include "hub_process.h"
 #include "tool_messages.h"
@@ -57,10 +58,10 @@ struct Planner {
   }
   bool send(const char* action) {
     SmartToolCommand c{};
-    c.target_type = const_cast<char*>("smart_tool");  // NOLINT: wire type wants char*
-    c.target_name = const_cast<char*>("tool");        // NOLINT
-    c.action = const_cast<char*>(action);             // NOLINT
-    c.program = const_cast<char*>("");                // NOLINT
+    hubrt::msgs::typed::assign(c.target_type, "smart_tool");
+    hubrt::msgs::typed::assign(c.target_name, "tool");
+    hubrt::msgs::typed::assign(c.action, action);
+    hubrt::msgs::typed::assign(c.program, "");
     return writer->write(c).is_ok();
   }
   dds::Participant participant;
@@ -116,7 +117,7 @@ TEST(CommandFlood, TwoPlannersFlippingTheCommandStayWithinTheBudgetAndTheHeartbe
       const Result<bool> taken = states->take_next(sample);
       if (!taken.is_ok() || !taken.value()) return;
       stamps[sample.get().header.seq] = stamp_s(sample.get());
-      echoes[sample.get().header.seq] = sample.get().echo.action == nullptr ? "" : sample.get().echo.action;
+      echoes[sample.get().header.seq] = std::string(sample.get().echo.action);
     }
   };
 

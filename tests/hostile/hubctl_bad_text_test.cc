@@ -49,13 +49,11 @@ TEST(HubctlBadText, EchoJsonShowsAStateWithBadUtf8EscapedAndGoesOn) {
       "ck";
   std::string error = "rejected command: unknown action 'a\xed\xa0\x80'";
   std::string action = "\xff";
-  std::string empty;
-  char* errors[1] = {error.data()};
+  char errors[1][192] = {};
+  error.copy(errors[0], sizeof errors[0] - 1);
   DockState state{};
-  state.name = name.data();
-  state.echo.target_type = empty.data();
-  state.echo.target_name = empty.data();
-  state.echo.action = action.data();
+  name.copy(state.name, sizeof state.name - 1);  // raw bytes: the typed setters are for hubs
+  action.copy(state.echo.action, sizeof state.echo.action - 1);
   state.error_list._buffer = errors;
   state.error_list._length = state.error_list._maximum = 1;
   // Until hubctl has printed its samples and exited (or died): it may still be matching when the

@@ -12,6 +12,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 
 #include "dock_messages.h"
 #include "hub_process.h"
@@ -20,8 +21,8 @@ namespace hubrt::integration {
 namespace {
 
 using dock_ecu::DockEcuTypes;
-using HubCommand = DockEcuTypes::Command;
-using HubState = DockEcuTypes::State;
+using HubCommand = DockEcuTypes::Command::Wire;
+using HubState = DockEcuTypes::State::Wire;
 using std::chrono::milliseconds;
 namespace fs = std::filesystem;
 
@@ -91,12 +92,12 @@ class HubdDockHubLayoutTest : public ::testing::Test {
     planner_ = std::thread([this, fragment_name] {
       while (sending_) {
         HubCommand command{};
-        command.target_type = const_cast<char*>("dock_ecu");          // NOLINT: wire type wants char*
-        command.target_name = const_cast<char*>("dock_ecu");          // NOLINT
-        command.action = const_cast<char*>("apply");                  // NOLINT
-        command.dock.target_type = const_cast<char*>("");             // NOLINT: empty = this node
-        command.dock.target_name = const_cast<char*>(fragment_name);  // NOLINT
-        command.dock.action = const_cast<char*>("monitor");           // NOLINT
+        hubrt::msgs::typed::assign(command.target_type, "dock_ecu");
+        hubrt::msgs::typed::assign(command.target_name, "dock_ecu");
+        hubrt::msgs::typed::assign(command.action, "apply");
+        hubrt::msgs::typed::assign(command.dock.target_type, "");
+        hubrt::msgs::typed::assign(command.dock.target_name, fragment_name);
+        hubrt::msgs::typed::assign(command.dock.action, "monitor");
         writer_->write(command).ignore();
         std::this_thread::sleep_for(milliseconds(50));
       }

@@ -14,6 +14,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
 #include "dock_messages.h"
@@ -85,9 +86,9 @@ class HubdDockTest : public ::testing::Test {
 
   void send(const char* action, const char* target_name = "dock", const char* target_type = "dock") {
     DockCommand command{};
-    command.target_type = const_cast<char*>(target_type);  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>(target_name);  // NOLINT
-    command.action = const_cast<char*>(action);            // NOLINT
+    hubrt::msgs::typed::assign(command.target_type, target_type);
+    hubrt::msgs::typed::assign(command.target_name, target_name);
+    hubrt::msgs::typed::assign(command.action, action);
     ASSERT_TRUE(command_writer_->write(command).is_ok());
   }
 

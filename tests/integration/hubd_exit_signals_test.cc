@@ -22,6 +22,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
 #include "dock_messages.h"
@@ -39,10 +40,6 @@ using Signals = hub_msgs_msg_dds__SimSignals_;
 // Generous: a busy 2-core machine running sanitizer builds in parallel. These tests check
 // behaviour, not timing.
 constexpr auto kPatience = std::chrono::seconds(20);
-
-char* wire(const char* s) {
-  return const_cast<char*>(s);  // NOLINT: the wire type wants char*
-}
 
 // The level of output `name` in one SimSignals sample, if it is there.
 std::optional<bool> output_level(const Signals& signals, std::string_view name) {
@@ -101,20 +98,20 @@ class HubdWithOpenChanger : public ::testing::Test {
   // until the test ends: only hubd itself can close the valve.
   void plan() {
     std::array<hub_msgs_msg_dds__DockSlot_, 3> slots{
-        {{wire("ladder_frame_tool"), true}, {wire("filter_tool"), true}, {wire("smart_tool"), true}}};
+        {{"ladder_frame_tool", true}, {"filter_tool", true}, {"smart_tool", true}}};
     DockState dock{};
-    dock.name = wire("dock");
-    dock.echo.target_type = wire("");
-    dock.echo.target_name = wire("");
-    dock.echo.action = wire("");
+    hubrt::msgs::typed::assign(dock.name, "dock");
+    hubrt::msgs::typed::assign(dock.echo.target_type, "");
+    hubrt::msgs::typed::assign(dock.echo.target_name, "");
+    hubrt::msgs::typed::assign(dock.echo.action, "");
     dock.slots._buffer = slots.data();
     dock.slots._length = static_cast<std::uint32_t>(slots.size());
     dock.slots._maximum = dock.slots._length;
     RspCommand unlock{};
-    unlock.target_type = wire("tool_changer");
-    unlock.target_name = wire("rsp");
-    unlock.action = wire("unlock");
-    unlock.gripper = wire("grab");
+    hubrt::msgs::typed::assign(unlock.target_type, "tool_changer");
+    hubrt::msgs::typed::assign(unlock.target_name, "rsp");
+    hubrt::msgs::typed::assign(unlock.action, "unlock");
+    hubrt::msgs::typed::assign(unlock.gripper, "grab");
     while (running_) {
       dock_writer_->write(dock).ignore();
       command_writer_->write(unlock).ignore();

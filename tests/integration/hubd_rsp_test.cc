@@ -18,6 +18,7 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
 #include "dock_messages.h"
@@ -90,9 +91,6 @@ Seen seen_from(const RspState& s) {
   return out;
 }
 
-char* wire(const std::string& s) {
-  return const_cast<char*>(s.c_str());
-}  // NOLINT: wire type wants char*
 char* wire(const char* s) {
   return const_cast<char*>(s);
 }  // NOLINT
@@ -163,16 +161,16 @@ class HubdRspTest : public ::testing::TestWithParam<Layout> {
       ASSERT_TRUE(reader) << reader.error().message;
       node_reader_.emplace(std::move(*reader));
     } else {
-      auto command_topic = dds::Topic<RspEcuTypes::Command>::create(*participant_, "/rsp_ecu/command");
+      auto command_topic = dds::Topic<RspEcuTypes::Command::Wire>::create(*participant_, "/rsp_ecu/command");
       ASSERT_TRUE(command_topic) << command_topic.error().message;
       hub_command_topic_.emplace(std::move(*command_topic));
-      auto writer = dds::Writer<RspEcuTypes::Command>::create(*participant_, *hub_command_topic_);
+      auto writer = dds::Writer<RspEcuTypes::Command::Wire>::create(*participant_, *hub_command_topic_);
       ASSERT_TRUE(writer) << writer.error().message;
       hub_writer_.emplace(std::move(*writer));
-      auto state_topic = dds::Topic<RspEcuTypes::State>::create(*participant_, "/rsp_ecu/state");
+      auto state_topic = dds::Topic<RspEcuTypes::State::Wire>::create(*participant_, "/rsp_ecu/state");
       ASSERT_TRUE(state_topic) << state_topic.error().message;
       hub_state_topic_.emplace(std::move(*state_topic));
-      auto reader = dds::Reader<RspEcuTypes::State>::create(*participant_, *hub_state_topic_);
+      auto reader = dds::Reader<RspEcuTypes::State::Wire>::create(*participant_, *hub_state_topic_);
       ASSERT_TRUE(reader) << reader.error().message;
       hub_reader_.emplace(std::move(*reader));
     }
@@ -209,14 +207,13 @@ class HubdRspTest : public ::testing::TestWithParam<Layout> {
     }
   }
   void publish_dock() {
-    std::array<hub_msgs_msg_dds__DockSlot_, 3> slots{{{wire("ladder_frame_tool"), true},
-                                                      {wire("filter_tool"), true},
-                                                      {wire("smart_tool"), smart_tool_home_.load()}}};
+    std::array<hub_msgs_msg_dds__DockSlot_, 3> slots{
+        {{"ladder_frame_tool", true}, {"filter_tool", true}, {"smart_tool", smart_tool_home_.load()}}};
     DockState state{};
-    state.name = wire("dock");
-    state.echo.target_type = wire("");
-    state.echo.target_name = wire("");
-    state.echo.action = wire("");
+    hubrt::msgs::typed::assign(state.name, "dock");
+    hubrt::msgs::typed::assign(state.echo.target_type, "");
+    hubrt::msgs::typed::assign(state.echo.target_name, "");
+    hubrt::msgs::typed::assign(state.echo.action, "");
     state.slots._buffer = slots.data();
     state.slots._length = static_cast<std::uint32_t>(slots.size());
     state.slots._maximum = state.slots._length;
@@ -224,20 +221,20 @@ class HubdRspTest : public ::testing::TestWithParam<Layout> {
   }
   void publish_command(const std::string& action, const std::string& gripper) {
     RspCommand node{};
-    node.target_type = wire("tool_changer");
-    node.target_name = wire("rsp");
-    node.action = wire(action);
-    node.gripper = wire(gripper);
+    hubrt::msgs::typed::assign(node.target_type, "tool_changer");
+    hubrt::msgs::typed::assign(node.target_name, "rsp");
+    hubrt::msgs::typed::assign(node.action, action);
+    hubrt::msgs::typed::assign(node.gripper, gripper);
     if (node_writer_) {
       node_writer_->write(node).ignore();
       return;
     }
-    RspEcuTypes::Command hub{};
-    hub.target_type = wire("rsp_ecu");
-    hub.target_name = wire("rsp_ecu");
-    hub.action = wire("apply");
+    RspEcuTypes::Command::Wire hub{};
+    hubrt::msgs::typed::assign(hub.target_type, "rsp_ecu");
+    hubrt::msgs::typed::assign(hub.target_name, "rsp_ecu");
+    hubrt::msgs::typed::assign(hub.action, "apply");
     hub.rsp = node;
-    hub.rsp.target_type = wire("");  // empty: addressed to the node of this field
+    hubrt::msgs::typed::assign(hub.rsp.target_type, "");  // empty: addressed to the node of this field
     hub_writer_->write(hub).ignore();
   }
 
@@ -312,11 +309,11 @@ class HubdRspTest : public ::testing::TestWithParam<Layout> {
   std::optional<dds::Topic<RspState>> node_state_topic_;
   std::optional<dds::Reader<RspState>> node_reader_;
   dds::Sample<RspState> node_state_;
-  std::optional<dds::Topic<RspEcuTypes::Command>> hub_command_topic_;
-  std::optional<dds::Writer<RspEcuTypes::Command>> hub_writer_;
-  std::optional<dds::Topic<RspEcuTypes::State>> hub_state_topic_;
-  std::optional<dds::Reader<RspEcuTypes::State>> hub_reader_;
-  dds::Sample<RspEcuTypes::State> hub_state_;
+  std::optional<dds::Topic<RspEcuTypes::Command::Wire>> hub_command_topic_;
+  std::optional<dds::Writer<RspEcuTypes::Command::Wire>> hub_writer_;
+  std::optional<dds::Topic<RspEcuTypes::State::Wire>> hub_state_topic_;
+  std::optional<dds::Reader<RspEcuTypes::State::Wire>> hub_reader_;
+  dds::Sample<RspEcuTypes::State::Wire> hub_state_;
   std::optional<dds::Topic<hub_msgs_msg_dds__SimSignals_>> signals_topic_;
   std::optional<dds::Reader<hub_msgs_msg_dds__SimSignals_>> signals_reader_;
   dds::Sample<hub_msgs_msg_dds__SimSignals_> signals_;

@@ -24,6 +24,7 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/waitset.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/sim/sim_bridge_stage.h"
 
 #include "hub_process.h"
@@ -207,9 +208,17 @@ class NodeTypeLink final : public Link {
         data_(p, tool_reader_, lift_reader_) {}
 
   void send(const ToolOrder& tool, const LiftOrder& lift) override {
-    const std::string tool_type = "smart_tool", tool_name = "tool", lift_type = "lift", lift_name = "lift";
-    SmartToolCommand t{wire(tool_type), wire(tool_name), wire(tool.action), tool.run_id, wire(tool.program)};
-    LiftCommand l{wire(lift_type), wire(lift_name), wire(lift.action), wire(lift.position)};
+    SmartToolCommand t{};
+    hubrt::msgs::typed::assign(t.target_type, "smart_tool");
+    hubrt::msgs::typed::assign(t.target_name, "tool");
+    hubrt::msgs::typed::assign(t.action, tool.action);
+    t.run_id = tool.run_id;
+    hubrt::msgs::typed::assign(t.program, tool.program);
+    LiftCommand l{};
+    hubrt::msgs::typed::assign(l.target_type, "lift");
+    hubrt::msgs::typed::assign(l.target_name, "lift");
+    hubrt::msgs::typed::assign(l.action, lift.action);
+    hubrt::msgs::typed::assign(l.position, lift.position);
     EXPECT_TRUE(tool_writer_.write(t).is_ok());
     EXPECT_TRUE(lift_writer_.write(l).is_ok());
   }
@@ -260,15 +269,17 @@ class HubLink final : public Link {
         data_(p, reader_) {}
 
   void send(const ToolOrder& tool, const LiftOrder& lift) override {
-    const std::string hub_type = "tool_ecu", hub_name = "tool_ecu", apply = "apply", empty;
+    const std::string hub_type = "tool_ecu", hub_name = "tool_ecu", apply = "apply";
     ToolEcuCommand command{};
-    command.target_type = wire(hub_type);
-    command.target_name = wire(hub_name);
-    command.action = wire(apply);
+    hubrt::msgs::typed::assign(command.target_type, hub_type);
+    hubrt::msgs::typed::assign(command.target_name, hub_name);
+    hubrt::msgs::typed::assign(command.action, apply);
     // Empty target fields address each fragment to the node of its field.
-    command.tool =
-        SmartToolCommand{wire(empty), wire(empty), wire(tool.action), tool.run_id, wire(tool.program)};
-    command.lift = LiftCommand{wire(empty), wire(empty), wire(lift.action), wire(lift.position)};
+    hubrt::msgs::typed::assign(command.tool.action, tool.action);
+    command.tool.run_id = tool.run_id;
+    hubrt::msgs::typed::assign(command.tool.program, tool.program);
+    hubrt::msgs::typed::assign(command.lift.action, lift.action);
+    hubrt::msgs::typed::assign(command.lift.position, lift.position);
     EXPECT_TRUE(writer_.write(command).is_ok());
   }
   bool take(View& view) override {
@@ -383,8 +394,8 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
           const std::lock_guard lock(mutex_);
           if (rsp_alive_) {
             RspState state{};
-            state.name = wire(name);
-            state.tool = wire(robot_tool_);
+            hubrt::msgs::typed::assign(state.name, name);
+            hubrt::msgs::typed::assign(state.tool, robot_tool_);
             state.locked = robot_tool_ != "none";
             EXPECT_TRUE(rsp_writer_->write(state).is_ok());
           }

@@ -151,7 +151,8 @@ class HubdTwinTest : public ::testing::TestWithParam<const char*> {
     if (node_type_layout()) {
       states_ = std::make_unique<TypedCollector<dock_ecu::DockState>>(*participant_, state_topic());
     } else {
-      states_ = std::make_unique<TypedCollector<dock_ecu::DockEcuTypes::State>>(*participant_, state_topic());
+      states_ =
+          std::make_unique<TypedCollector<dock_ecu::DockEcuTypes::State::Wire>>(*participant_, state_topic());
     }
     auto diagnostics_topic = dds::Topic<DiagnosticArray>::create(*participant_, "/diagnostics");
     ASSERT_TRUE(diagnostics_topic) << diagnostics_topic.error().message;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/test_support/test_domain.h"
 
 #include "dock_messages.h"
@@ -57,9 +58,9 @@ TEST_F(SubscriptionsTest, AFreshStateIsHandedToTheLogicAndALostOneIsNot) {
   ASSERT_TRUE(topic);
   auto writer = dds::Writer<DockState>::create(*participant_, *topic);
   ASSERT_TRUE(writer);
-  hub_msgs_msg_dds__DockSlot_ slot{const_cast<char*>("smart_tool"), true};  // NOLINT: wire type wants char*
+  hub_msgs_msg_dds__DockSlot_ slot{"smart_tool", true};
   DockState state{};
-  state.name = const_cast<char*>("dock");  // NOLINT
+  hubrt::msgs::typed::assign(state.name, "dock");
   state.slots._buffer = &slot;
   state.slots._length = 1;
   state.slots._maximum = 1;

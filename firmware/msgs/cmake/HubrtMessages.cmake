@@ -3,7 +3,8 @@
 #   hubrt_add_messages(TARGET <target> FILES <file.idl>... [DEPENDS <message target>...] [NO_REGISTRY])
 #
 # For each file, idlc writes <stem>.h/.c (C types, topic descriptors) and, through the
-# hubrt_idlc_reflect plugin, <stem>_reflect.h/.cpp (TypeInfo tables, hubrt/msgs/type_info.h).
+# hubrt_idlc_reflect plugin, <stem>_reflect.h/.cpp (TypeInfo tables, hubrt/msgs/type_info.h) and
+# <stem>_typed.h (typed accessors and topic registrations, firmware/msgs/README.md).
 # <target> is a static library of both; include "<stem>.h" or "<stem>_reflect.h". IDL files may
 # #include the IDL of the DEPENDS targets by file name (e.g. #include "hub_msgs_common.idl").
 # Unless NO_REGISTRY is given, the types also join hubrt::msgs::all_types() (target
@@ -124,19 +125,21 @@ function(hubrt_add_messages)
       COMMENT "idlc: C types of ${stem}.idl"
       VERBATIM)
     add_custom_command(
-      OUTPUT "${out}/${stem}_reflect.cpp" "${out}/${stem}_reflect.h"
+      OUTPUT "${out}/${stem}_reflect.cpp" "${out}/${stem}_reflect.h" "${out}/${stem}_typed.h"
       COMMAND "${HUBRT_IDLC_EXECUTABLE}" -l "${plugin}" ${idlc_args} -o "${out}" "${abs}"
       DEPENDS ${idl_inputs} ${plugin_depends}
-      COMMENT "idlc: reflection tables of ${stem}.idl"
+      COMMENT "idlc: reflection tables and typed accessors of ${stem}.idl"
       VERBATIM)
-    list(APPEND sources "${out}/${stem}.c" "${out}/${stem}.h" "${out}/${stem}_reflect.cpp" "${out}/${stem}_reflect.h")
+    list(APPEND sources "${out}/${stem}.c" "${out}/${stem}.h" "${out}/${stem}_reflect.cpp" "${out}/${stem}_reflect.h"
+         "${out}/${stem}_typed.h")
   endforeach()
 
   # Generated code gets no hubrt warning flags, and its headers are SYSTEM headers for users: its
   # warnings (and clang-tidy's view of idlc's names, e.g. the reserved "dds__") are not ours to fix.
   add_library(${A_TARGET} STATIC ${sources})
   target_include_directories(${A_TARGET} SYSTEM PUBLIC "${out}")
-  target_link_libraries(${A_TARGET} PUBLIC CycloneDDS::ddsc hubrt_msgs_reflect ${A_DEPENDS})
+  # hubrt_dds: <stem>_typed.h registers the topic types (hubrt/dds/topic_type.h).
+  target_link_libraries(${A_TARGET} PUBLIC CycloneDDS::ddsc hubrt_msgs_reflect hubrt_dds ${A_DEPENDS})
   set_target_properties(${A_TARGET} PROPERTIES
     HUBRT_IDL_INCLUDE_DIRS "${include_dirs}"
     HUBRT_IDL_FILES "${idl_inputs}"

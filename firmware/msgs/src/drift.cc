@@ -109,6 +109,9 @@ std::string msg_type_of(const FieldInfo& field) {
   std::string element = field.element_kind == FieldKind::kStruct && field.nested != nullptr
                             ? msg_name_of(*field.nested)
                             : std::string(msg_primitive(field.element_kind));
+  // ROS 2 writes IDL string<N> as string<=N.
+  if (field.element_kind == FieldKind::kString && field.string_bound != 0)
+    element += fmt::format("<={}", field.string_bound);
   if (field.kind == FieldKind::kArray) return fmt::format("{}[{}]", element, field.bound);
   if (field.kind == FieldKind::kSequence) {
     return field.bound != 0 ? fmt::format("{}[<={}]", element, field.bound) : element + "[]";

@@ -88,12 +88,9 @@ std::string shown_text(std::string_view text) {
 void collect_invalid_utf8(const FieldInfo& slot, const void* addr, const std::string& path,
                           std::vector<std::string>& out) {
   switch (slot.kind) {
-    case FieldKind::kString: {
-      const char* s = nullptr;
-      std::memcpy(&s, addr, sizeof s);
-      if (s != nullptr && !is_valid_utf8(s)) out.push_back(path);
+    case FieldKind::kString:
+      if (!is_valid_utf8(string_at(slot, addr))) out.push_back(path);
       return;
-    }
     case FieldKind::kStruct:
       for (const FieldInfo& f : slot.nested->fields)
         collect_invalid_utf8(f, field_address(addr, f), join_path(path, f.name), out);
@@ -127,8 +124,8 @@ std::string_view display_name(const TypeInfo& type) {
 
 FieldInfo element_slot(const FieldInfo& container) {
   return FieldInfo{
-      container.name,  container.element_kind, container.element_kind, 0, container.element_size, 0,
-      container.nested};
+      container.name,   container.element_kind, container.element_kind, 0, container.element_size, 0,
+      container.nested, container.string_bound};
 }
 
 const FieldInfo* find_field(const TypeInfo& type, std::string_view name) {
@@ -168,11 +165,8 @@ std::string describe_json(const Json& value) {
 
 Json slot_to_json(const FieldInfo& slot, const void* addr) {
   switch (slot.kind) {
-    case FieldKind::kString: {
-      const char* s = nullptr;
-      std::memcpy(&s, addr, sizeof s);
-      return s == nullptr ? std::string() : shown_text(s);
-    }
+    case FieldKind::kString:
+      return shown_text(string_at(slot, addr));
     case FieldKind::kStruct:
       return struct_to_json(*slot.nested, addr);
     case FieldKind::kSequence:
@@ -202,6 +196,11 @@ Expected<void> check_slot_json(const FieldInfo& slot, const Json& value, const s
       if (value.get_ref<const std::string&>().find('\0') != std::string::npos) {
         return make_error(ErrorCode::kInvalidArgument,
                           fmt::format("{}: strings cannot contain a NUL character", path));
+      }
+      if (slot.string_bound != 0 && value.get_ref<const std::string&>().size() > slot.string_bound) {
+        return make_error(ErrorCode::kOutOfRange,
+                          fmt::format("{}: at most {} bytes ({}), got {}", path, slot.string_bound,
+                                      describe_type(slot), value.get_ref<const std::string&>().size()));
       }
       return {};
     case FieldKind::kStruct:
@@ -250,7 +249,7 @@ Expected<void> check_struct_json(const TypeInfo& type, const Json& value, const 
 void assign_slot_json(const FieldInfo& slot, const Json& value, void* addr) {
   switch (slot.kind) {
     case FieldKind::kString:
-      store_string(addr, value.get_ref<const std::string&>());
+      store_string(slot, addr, value.get_ref<const std::string&>());
       break;
     case FieldKind::kStruct:
       assign_struct_json(*slot.nested, value, addr);

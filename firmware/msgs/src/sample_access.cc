@@ -224,7 +224,13 @@ Scalar load_scalar(FieldKind kind, const void* addr) {
   }
 }
 
-void store_string(void* addr, std::string_view text) {
+void store_string(const FieldInfo& slot, void* addr, std::string_view text) {
+  if (slot.string_bound != 0) {
+    const std::size_t n = std::min<std::size_t>(text.size(), slot.string_bound);
+    std::memcpy(addr, text.data(), n);
+    static_cast<char*>(addr)[n] = '\0';
+    return;
+  }
   char* copy = static_cast<char*>(checked(dds_string_alloc(text.size())));
   std::memcpy(copy, text.data(), text.size());
   copy[text.size()] = '\0';
@@ -233,8 +239,8 @@ void store_string(void* addr, std::string_view text) {
   dds_free(old);
 }
 
-void free_element(FieldKind kind, const TypeInfo* nested, void* addr) noexcept {
-  if (kind == FieldKind::kString) {
+void free_element(FieldKind kind, const TypeInfo* nested, void* addr, std::uint32_t string_bound) noexcept {
+  if (kind == FieldKind::kString && string_bound == 0) {
     dds_free(load<char*>(addr));
     store<char*>(addr, nullptr);
   } else if (kind == FieldKind::kStruct) {
@@ -255,7 +261,7 @@ void resize_sequence(const FieldInfo& field, void* field_addr, std::size_t lengt
   const bool owns_elements = seq->_release || field.element_kind == FieldKind::kStruct;
   if (owns_elements) {
     for (std::size_t i = kept; i < held; ++i) {
-      free_element(field.element_kind, field.nested, seq->_buffer + i * es);
+      free_element(field.element_kind, field.nested, seq->_buffer + i * es, field.string_bound);
     }
   }
   if (seq->_release) dds_free(seq->_buffer);

@@ -49,14 +49,17 @@ std::string range_problem(FieldKind kind, const Scalar& value);
 void store_scalar(FieldKind kind, void* addr, const Scalar& value);
 Scalar load_scalar(FieldKind kind, const void* addr);
 
-// Replaces the string at `addr` (a char*) by a dds_string_dup'ed copy of `text`, freeing the old.
-void store_string(void* addr, std::string_view text);
+// Replaces the string of `slot` at `addr`: a char* by a dds_string_dup'ed copy of `text`
+// (freeing the old), a bounded char[N+1] by a copy in place. Precondition: a bounded string's
+// `text` has at most N bytes (callers check and say so).
+void store_string(const FieldInfo& slot, void* addr, std::string_view text);
 
 // Resizes a sequence the sample owns to `length` elements: kept elements move over, new ones are
 // zero, dropped ones are released. Afterwards _maximum == _length and _release is set.
 void resize_sequence(const FieldInfo& field, void* field_addr, std::size_t length);
 
-// Releases what one element of `kind` (string or struct) owns; nothing for scalars.
-void free_element(FieldKind kind, const TypeInfo* nested, void* addr) noexcept;
+// Releases what one element of `kind` (string or struct) owns; nothing for scalars and bounded
+// strings (`string_bound` != 0: inline).
+void free_element(FieldKind kind, const TypeInfo* nested, void* addr, std::uint32_t string_bound) noexcept;
 
 }  // namespace hubrt::msgs::detail

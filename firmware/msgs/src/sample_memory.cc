@@ -13,11 +13,12 @@ void free_contents(const TypeInfo& type, void* sample) noexcept {
     switch (field.kind) {
       case FieldKind::kString:
       case FieldKind::kStruct:
-        detail::free_element(field.kind, field.nested, addr);
+        detail::free_element(field.kind, field.nested, addr, field.string_bound);
         break;
       case FieldKind::kArray:
         for (std::size_t i = 0; i < field.bound; ++i) {
-          detail::free_element(field.element_kind, field.nested, detail::element_address(field, addr, i));
+          detail::free_element(field.element_kind, field.nested, detail::element_address(field, addr, i),
+                               field.string_bound);
         }
         break;
       case FieldKind::kSequence: {
@@ -26,7 +27,8 @@ void free_contents(const TypeInfo& type, void* sample) noexcept {
         const std::size_t held = std::max(seq->_maximum, seq->_length);
         if (seq->_release || field.element_kind == FieldKind::kStruct) {
           for (std::size_t i = 0; i < held; ++i) {
-            detail::free_element(field.element_kind, field.nested, seq->_buffer + i * field.element_size);
+            detail::free_element(field.element_kind, field.nested, seq->_buffer + i * field.element_size,
+                                 field.string_bound);
           }
         }
         if (seq->_release) dds_free(seq->_buffer);

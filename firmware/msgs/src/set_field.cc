@@ -212,6 +212,11 @@ Expected<void> set_field(const TypeInfo& type, void* sample, std::string_view pa
       return make_error(ErrorCode::kInvalidArgument,
                         fmt::format("{}: strings cannot contain a NUL character", checked->path));
     }
+    if (slot.string_bound != 0 && text.size() > slot.string_bound) {
+      return make_error(ErrorCode::kOutOfRange,
+                        fmt::format("{}: at most {} bytes ({}), got {}", checked->path, slot.string_bound,
+                                    describe_type(slot), text.size()));
+    }
   } else {
     json = Json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (json.is_discarded()) {
@@ -226,7 +231,7 @@ Expected<void> set_field(const TypeInfo& type, void* sample, std::string_view pa
   if (scalar) {
     detail::store_scalar(slot.kind, target->addr, *scalar);
   } else if (slot.kind == FieldKind::kString) {
-    detail::store_string(target->addr, text);
+    detail::store_string(slot, target->addr, text);
   } else {
     detail::assign_slot_json(slot, json, target->addr);
   }

@@ -9,6 +9,9 @@ std::string element_name(const FieldInfo& field) {
   if (field.element_kind == FieldKind::kStruct && field.nested != nullptr) {
     return std::string(field.nested->ros_name.empty() ? field.nested->dds_name : field.nested->ros_name);
   }
+  if (field.element_kind == FieldKind::kString && field.string_bound != 0) {
+    return "string<" + std::to_string(field.string_bound) + ">";
+  }
   return std::string(to_string(field.element_kind));
 }
 

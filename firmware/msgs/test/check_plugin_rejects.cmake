@@ -11,7 +11,7 @@ if(rc EQUAL 0)
 endif()
 foreach(expected
     "unsupported.idl:4:3: enum 'Color' is not supported"
-    "unsupported.idl:8:[0-9]+: bad::Everything.short_text: bounded strings are not supported"
+    "unsupported.idl:8:[0-9]+: bad::Everything.short_texts: arrays of bounded strings are not supported"
     "unsupported.idl:9:[0-9]+: bad::Everything.maybe: @optional and @external members are not supported"
     "unsupported.idl:10:[0-9]+: bad::Everything.nested: sequences of sequences are not supported"
     "unsupported.idl:11:[0-9]+: bad::Everything.grid: multi-dimensional arrays are not supported")

@@ -23,13 +23,13 @@ using ::testing::HasSubstr;
 
 constexpr const char* kDockState =
     "StateHeader header\n"
-    "string name\n"
+    "string<=64 name\n"
     "DockCommand echo\n"
     "bool fresh_msg\n"
     "float32 t_plus\n"
     "bool got_reset\n"
-    "string[] error_list\n"
-    "DockSlot[] slots\n";
+    "string<=191[<=16] error_list\n"
+    "DockSlot[<=16] slots\n";
 
 constexpr const char* kWhere =
     "hub_msgs/msg/DockState (DockState.msg vs IDL hub_msgs::msg::dds_::DockState_ in dock.idl): ";
@@ -50,8 +50,8 @@ std::vector<ros::MsgSpec> package_with_dock_state(const std::string& dock_state)
           "byte OK=0\nbyte level\nstring name\nstring message\nstring hardware_id\nKeyValue[] values\n"),
       msg("diagnostic_msgs", "DiagnosticArray", "std_msgs/Header header\nDiagnosticStatus[] status\n"),
       msg("hub_msgs", "StateHeader", "builtin_interfaces/Time stamp\nuint64 seq\nuint8 lifecycle\n"),
-      msg("hub_msgs", "DockCommand", "string target_type\nstring target_name\nstring action\n"),
-      msg("hub_msgs", "DockSlot", "string name\nbool occupied\n"),
+      msg("hub_msgs", "DockCommand", "string<=64 target_type\nstring<=64 target_name\nstring<=64 action\n"),
+      msg("hub_msgs", "DockSlot", "string<=64 name\nbool occupied\n"),
       msg("hub_msgs", "DockState", dock_state),
   };
 }
@@ -91,20 +91,25 @@ TEST(FindDrift, ChangedPrimitiveType) {
 
 TEST(FindDrift, SequenceVersusSingleValue) {
   EXPECT_THAT(
-      drift(package_with_dock_state(replace(kDockState, "string[] error_list", "string error_list"))),
-      ElementsAre(std::string(kWhere) +
-                  "field 7 'error_list' (line 7) is string in the .msg but string[] in the IDL: a single "
-                  "value in the .msg, a sequence in the IDL"));
+      drift(package_with_dock_state(
+          replace(kDockState, "string<=191[<=16] error_list", "string<=191 error_list"))),
+      ElementsAre(
+          std::string(kWhere) +
+          "field 7 'error_list' (line 7) is string<=191 in the .msg but string<=191[<=16] in the IDL: a "
+          "single value in the .msg, a bounded sequence in the IDL"));
   EXPECT_THAT(
-      drift(package_with_dock_state(replace(kDockState, "DockSlot[] slots", "DockSlot[4] slots"))),
-      ElementsAre(HasSubstr("is hub_msgs/DockSlot[4] in the .msg but hub_msgs/DockSlot[] in the IDL: a "
-                            "fixed-size array in the .msg, a sequence in the IDL")));
+      drift(package_with_dock_state(replace(kDockState, "DockSlot[<=16] slots", "DockSlot[4] slots"))),
+      ElementsAre(HasSubstr("is hub_msgs/DockSlot[4] in the .msg but hub_msgs/DockSlot[<=16] in the IDL: a "
+                            "fixed-size array in the .msg, a bounded sequence in the IDL")));
 }
 
 TEST(FindDrift, BoundedStringVersusUnbounded) {
-  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string name", "string<=16 name"))),
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string<=64 name", "string<=16 name"))),
               ElementsAre(std::string(kWhere) +
-                          "field 2 'name' (line 2) is string<=16 in the .msg but string in the IDL"));
+                          "field 2 'name' (line 2) is string<=16 in the .msg but string<=64 in the IDL"));
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "string<=64 name", "string name"))),
+              ElementsAre(std::string(kWhere) +
+                          "field 2 'name' (line 2) is string in the .msg but string<=64 in the IDL"));
 }
 
 TEST(FindDrift, NestedTypeNamesIncludingTheBuiltinTimeMapping) {
@@ -136,9 +141,9 @@ TEST(FindDrift, TypeOnOneSideOnly) {
 }
 
 TEST(FindDrift, MissingAndExtraFields) {
-  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "DockSlot[] slots\n", ""))),
+  EXPECT_THAT(drift(package_with_dock_state(replace(kDockState, "DockSlot[<=16] slots\n", ""))),
               ElementsAre(std::string(kWhere) +
-                          "IDL field 8 'slots' (hub_msgs/DockSlot[]) is missing from the .msg"));
+                          "IDL field 8 'slots' (hub_msgs/DockSlot[<=16]) is missing from the .msg"));
   EXPECT_THAT(drift(package_with_dock_state(std::string(kDockState) + "uint8 battery\n")),
               ElementsAre(std::string(kWhere) + ".msg field 9 'battery' (uint8, line 9) is not in the IDL"));
 }
@@ -180,6 +185,41 @@ TEST(FindDrift, EveryKindMatchesItsMsgSpelling) {
                              &type_info_of<hubrt_test_msg_dds__AllKinds_>(),
                              &type_info_of<builtin_interfaces_msg_dds__Time_>()};
   EXPECT_THAT(find_drift(msgs, types), ElementsAre());
+}
+
+// Bounds are part of the type: a .msg that drops or changes one drifts (issue 11: the IDL bounds
+// are what Cyclone enforces, so a ROS 2 peer built from the .msg must know them).
+TEST(FindDrift, StringAndSequenceBoundsMustMatch) {
+  constexpr const char* kBounded =
+      "string<=8 label\nuint32 count\nSlot first\nstring<=6[<=3] notes\nSlot[<=4] slots\nint32[<=2] "
+      "numbers\n";
+  const auto with = [](const std::string& bounded) {
+    return std::vector<ros::MsgSpec>{msg("hubrt_test", "Slot", "string<=8 name\nbool occupied\n"),
+                                     msg("hubrt_test", "Bounded", bounded)};
+  };
+  const TypeInfo* types[] = {&type_info_of<hubrt_test_msg_dds__Slot_>(),
+                             &type_info_of<hubrt_test_msg_dds__Bounded_>()};
+  EXPECT_THAT(find_drift(with(kBounded), types), ElementsAre());
+  const std::string where =
+      "hubrt_test/msg/Bounded (Bounded.msg vs IDL hubrt_test::msg::dds_::Bounded_ in "
+      "reflect_test_types.idl): ";
+  EXPECT_THAT(find_drift(with(replace(kBounded, "string<=8 label", "string label")), types),
+              ElementsAre(where + "field 1 'label' (line 1) is string in the .msg but string<=8 in the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "string<=8 label", "string<=9 label")), types),
+      ElementsAre(where + "field 1 'label' (line 1) is string<=9 in the .msg but string<=8 in the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "string<=6[<=3] notes", "string<=6[<=4] notes")), types),
+      ElementsAre(where + "field 4 'notes' (line 4) is string<=6[<=4] in the .msg but string<=6[<=3] in "
+                          "the IDL"));
+  EXPECT_THAT(find_drift(with(replace(kBounded, "string<=6[<=3] notes", "string[<=3] notes")), types),
+              ElementsAre(where + "field 4 'notes' (line 4) is string[<=3] in the .msg but string<=6[<=3] in "
+                                  "the IDL"));
+  EXPECT_THAT(
+      find_drift(with(replace(kBounded, "Slot[<=4] slots", "Slot[] slots")), types),
+      ElementsAre(HasSubstr("field 5 'slots' (line 5) is hubrt_test/Slot[] in the .msg but "
+                            "hubrt_test/Slot[<=4] in the IDL: a sequence in the .msg, a bounded sequence "
+                            "in the IDL")));
 }
 
 TEST(FindDrift, IdlTypesMustBeRosNamed) {

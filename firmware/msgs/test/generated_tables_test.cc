@@ -63,18 +63,22 @@ TEST(GeneratedTables, DockStateKindsAndNesting) {
   EXPECT_EQ(field(t, "t_plus").kind, FieldKind::kFloat32);
   EXPECT_EQ(field(t, "error_list").kind, FieldKind::kSequence);
   EXPECT_EQ(field(t, "error_list").element_kind, FieldKind::kString);
-  EXPECT_EQ(field(t, "error_list").element_size, sizeof(char*));
+  EXPECT_EQ(field(t, "error_list").element_size, 192u) << "string<191>: char[192] inline";
+  EXPECT_EQ(field(t, "error_list").string_bound, 191u);
+  EXPECT_EQ(field(t, "error_list").bound, 16u);
+  EXPECT_EQ(field(t, "name").string_bound, 64u);
   EXPECT_EQ(field(t, "slots").element_kind, FieldKind::kStruct);
   EXPECT_EQ(field(t, "slots").nested, &type_info_of<hub_msgs_msg_dds__DockSlot_>());
   EXPECT_EQ(field(t, "slots").element_size, sizeof(hub_msgs_msg_dds__DockSlot_));
-  EXPECT_EQ(field(t, "slots").bound, 0u);
+  EXPECT_EQ(field(t, "slots").bound, 16u);
 
   const TypeInfo& header = type_info_of<hub_msgs_msg_dds__StateHeader_>();
   EXPECT_EQ(field_names(header), (std::vector<std::string>{"stamp", "seq", "lifecycle"}));
   EXPECT_EQ(field(header, "lifecycle").kind, FieldKind::kUInt8);
   EXPECT_EQ(field(header, "stamp").nested, &type_info_of<builtin_interfaces_msg_dds__Time_>());
   EXPECT_EQ(field(header, "seq").kind, FieldKind::kUInt64);
-  EXPECT_EQ(describe_type(field(t, "slots")), "sequence<hub_msgs/msg/DockSlot>");
+  EXPECT_EQ(describe_type(field(t, "slots")), "sequence<hub_msgs/msg/DockSlot, 16>");
+  EXPECT_EQ(describe_type(field(t, "error_list")), "sequence<string<191>, 16>");
 }
 
 TEST(GeneratedTables, EveryKindMapsToItsCType) {
@@ -119,7 +123,8 @@ TEST(GeneratedTables, FileListsHoldEveryStructInDeclarationOrder) {
   EXPECT_EQ(dock[0], &type_info_of<hub_msgs_msg_dds__DockCommand_>());
   EXPECT_EQ(dock[1], &type_info_of<hub_msgs_msg_dds__DockSlot_>());
   EXPECT_EQ(dock[2], &type_info_of<hub_msgs_msg_dds__DockState_>());
-  EXPECT_EQ(reflected::types_of_reflect_test_types().size(), 3u);
+  EXPECT_EQ(reflected::types_of_reflect_test_types().size(),
+            6u);  // Inner, AllKinds, Slot, Bounded, Outer, Point
 }
 
 // Whatever hubs add later: every registered table must agree with idlc's descriptor.

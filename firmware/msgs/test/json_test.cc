@@ -21,27 +21,28 @@ using ::testing::HasSubstr;
 using testing::OwnedSample;
 using Json = nlohmann::ordered_json;
 
-// A DockState built by hand, the way C code fills it (strings and buffers from dds_alloc).
+// A DockState built by hand, the way C code fills it (bounded strings inline, sequence buffers
+// from dds_alloc).
 void fill_by_hand(hub_msgs_msg_dds__DockState_& s) {
   s.header.stamp.sec = 1700000000;
   s.header.stamp.nanosec = 250000000;
   s.header.seq = 42;
   s.header.lifecycle = 3;
-  s.name = dds_string_dup("dock1");
-  s.echo.target_type = dds_string_dup("dock");
-  s.echo.target_name = dds_string_dup("dock1");
-  s.echo.action = dds_string_dup("monitor");
+  std::strcpy(s.name, "dock1");
+  std::strcpy(s.echo.target_type, "dock");
+  std::strcpy(s.echo.target_name, "dock1");
+  std::strcpy(s.echo.action, "monitor");
   s.fresh_msg = true;
   s.t_plus = 0.8f;
   s.got_reset = false;
-  s.error_list._buffer = static_cast<char**>(dds_alloc(sizeof(char*)));
-  s.error_list._buffer[0] = dds_string_dup("slot sensor 2 stuck");
+  s.error_list._buffer = static_cast<char(*)[192]>(dds_alloc(sizeof(char[192])));
+  std::strcpy(s.error_list._buffer[0], "slot sensor 2 stuck");
   s.error_list._length = s.error_list._maximum = 1;
   s.error_list._release = true;
   s.slots._buffer =
       static_cast<hub_msgs_msg_dds__DockSlot_*>(dds_alloc(2 * sizeof(hub_msgs_msg_dds__DockSlot_)));
-  s.slots._buffer[0] = {dds_string_dup("smart_tool"), true};
-  s.slots._buffer[1] = {dds_string_dup("filter_tool"), false};
+  s.slots._buffer[0] = {"smart_tool", true};
+  s.slots._buffer[1] = {"filter_tool", false};
   s.slots._length = s.slots._maximum = 2;
   s.slots._release = true;
 }
@@ -70,10 +71,8 @@ TEST(ToJson, NullStringsAndEmptySequencesOfAZeroSample) {
 TEST(ToJson, TextThatIsNotUtf8IsEscapedSoTheJsonCanAlwaysBeDumped) {
   OwnedSample<hub_msgs_msg_dds__DockState_> s;
   fill_by_hand(*s);
-  dds_free(s->error_list._buffer[0]);
-  s->error_list._buffer[0] = dds_string_dup("unknown action 'a\xed\xa0\x80'");  // issue 11
-  dds_free(s->slots._buffer[1].name);
-  s->slots._buffer[1].name = dds_string_dup("\xc0\xaf\\");
+  std::strcpy(s->error_list._buffer[0], "unknown action 'a\xed\xa0\x80'");  // issue 11
+  std::strcpy(s->slots._buffer[1].name, "\xc0\xaf\\");
   const Json j = to_json(s.type(), s.get());
   EXPECT_EQ(j["error_list"][0], "unknown action 'a\\xED\\xA0\\x80'");
   EXPECT_EQ(j["slots"][1]["name"], "\\xC0\\xAF\\\\") << "a backslash in escaped text is doubled";

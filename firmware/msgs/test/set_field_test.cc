@@ -34,7 +34,7 @@ TEST(SetField, DottedPathIntoANestedStruct) {
   EXPECT_EQ(s->header.seq, std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(s->t_plus, 1.25f);
   EXPECT_TRUE(s->fresh_msg);
-  EXPECT_EQ(s->echo.target_name, nullptr) << "untouched fields stay as they were";
+  EXPECT_STREQ(s->echo.target_name, "") << "untouched fields stay as they were";
 }
 
 TEST(SetField, IndexAtTheLengthAppendsOtherIndicesReplace) {
@@ -226,6 +226,35 @@ TEST(SetField, AFailedValueDoesNotAppend) {
   ASSERT_FALSE(set_field(s.type(), s.get(), "slots[0].occupied", "maybe"));
   EXPECT_EQ(s->slots._length, 0u);
   EXPECT_EQ(s->slots._buffer, nullptr);
+}
+
+}  // namespace
+}  // namespace hubrt::msgs
+
+namespace hubrt::msgs {
+namespace {
+
+// Bounded strings (char[N+1] inline) and bounded sequences of them: written in place, refused
+// over the bound with the bound named, read back by to_json.
+TEST(SetField, BoundedStringsAreWrittenInPlaceAndRefusedOverTheirBound) {
+  OwnedSample<hubrt_test_msg_dds__Bounded_> s;
+  ASSERT_TRUE(set_field(s.type(), s.get(), "label", "lock"));
+  EXPECT_STREQ(s->label, "lock");
+  const auto too_long = set_field(s.type(), s.get(), "label", "123456789");
+  ASSERT_FALSE(too_long);
+  EXPECT_THAT(too_long.error().message, HasSubstr("label: at most 8 bytes (string<8>), got 9"));
+  EXPECT_STREQ(s->label, "lock") << "a refused value changes nothing";
+
+  ASSERT_TRUE(set_field(s.type(), s.get(), "notes", R"(["a", "bb"])"));
+  ASSERT_EQ(s->notes._length, 2u);
+  EXPECT_STREQ(s->notes._buffer[1], "bb");
+  const auto long_note = set_field(s.type(), s.get(), "notes", R"(["1234567"])");
+  ASSERT_FALSE(long_note);
+  EXPECT_THAT(long_note.error().message, HasSubstr("notes[0]: at most 6 bytes"));
+  EXPECT_FALSE(set_field(s.type(), s.get(), "notes", R"(["a", "b", "c", "d"])")) << "sequence bound 3";
+  ASSERT_TRUE(set_field(s.type(), s.get(), "slots[0].name", "slot"));
+  EXPECT_EQ(to_json(s.type(), s.get())["notes"], nlohmann::ordered_json::parse(R"(["a", "bb"])"));
+  EXPECT_EQ(to_json(s.type(), s.get())["slots"][0]["name"], "slot");
 }
 
 }  // namespace

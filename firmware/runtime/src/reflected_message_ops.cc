@@ -38,6 +38,7 @@ bool struct_copy(const TypeInfo& type, const void* src, void* dst, Arena& arena)
 bool element_equal(const FieldInfo& field, const void* a, const void* b) noexcept {
   switch (field.element_kind) {
     case FieldKind::kString: {
+      if (field.string_bound != 0) return msgs::string_at(field, a) == msgs::string_at(field, b);
       const char* x = *static_cast<const char* const*>(a);
       const char* y = *static_cast<const char* const*>(b);
       if (x == nullptr || y == nullptr) return x == y;
@@ -105,6 +106,10 @@ bool copy_string(const char* src, char** dst, Arena& arena) noexcept {
 bool copy_element(const FieldInfo& field, const void* src, void* dst, Arena& arena) noexcept {
   switch (field.element_kind) {
     case FieldKind::kString:
+      if (field.string_bound != 0) {  // inline char[N+1]
+        std::memcpy(dst, src, field.element_size);
+        return true;
+      }
       return copy_string(*static_cast<const char* const*>(src), static_cast<char**>(dst), arena);
     case FieldKind::kStruct:
       return struct_copy(*field.nested, src, dst, arena);
@@ -202,14 +207,18 @@ class FieldChecker {
       return false;
     }
     if (field.element_kind != FieldKind::kString) return true;
-    const char* text = *static_cast<const char* const*>(value);
-    const char* why = string_problem(text, max_length_);
+    // A bounded string (char[N+1]) is read up to its NUL; without one it reads as N+1 bytes, too
+    // long for any limit of N or less.
+    const std::string_view whole = msgs::string_at(field, value);
+    const char* why = field.string_bound != 0
+                          ? string_problem(whole, max_length_)
+                          : string_problem(*static_cast<const char* const*>(value), max_length_);
     if (why == nullptr) return true;
     const std::string_view path(path_.data(), path_length_);
     if (why == kNotUtf8 || why == kControlCharacter) {
       // Quoted escaped, so that the operator sees which bytes came and the State stays UTF-8.
       problem_.format("field '{}' {}: '{}' (limit {} bytes of UTF-8 text)", path, why,
-                      Escaped{std::string_view(text, strnlen(text, max_length_))}, max_length_);
+                      Escaped{whole.substr(0, max_length_)}, max_length_);
     } else {
       problem_.format("field '{}' {} (limit {} bytes of UTF-8 text)", path, why, max_length_);
     }
@@ -249,9 +258,11 @@ class FieldChecker {
 const char* string_problem(const char* text, std::size_t max_length) noexcept {
   if (text == nullptr) return "is missing";
   // strnlen: never reads further than one byte past the limit, however long the string.
-  const std::size_t length = strnlen(text, max_length + 1);
-  if (length > max_length) return "is too long";
-  const std::string_view bytes(text, length);
+  return string_problem(std::string_view(text, strnlen(text, max_length + 1)), max_length);
+}
+
+const char* string_problem(std::string_view bytes, std::size_t max_length) noexcept {
+  if (bytes.size() > max_length) return "is too long";
   if (!is_valid_utf8(bytes)) return kNotUtf8;
   for (const char c : bytes) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return kControlCharacter;

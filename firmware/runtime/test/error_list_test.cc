@@ -7,16 +7,10 @@
 #include "hubrt/base/utf8.h"
 #include "hubrt/runtime/text_buffer.h"
 
+#include "valve_test_typed.h"
+
 namespace hubrt::runtime {
 namespace {
-
-// The shape idlc generates for sequence<string>.
-struct StringSequence {
-  std::uint32_t _maximum;
-  std::uint32_t _length;
-  char** _buffer;
-  bool _release;
-};
 
 TEST(TextBuffer, FormatsAndCutsLongTextVisibly) {
   TextBuffer<8> text;
@@ -54,20 +48,27 @@ TEST(ErrorList, AMessageQuotingBadBytesIsStoredEscaped) {
   EXPECT_EQ(errors.at(2), "plain \xc3\xbc stays");
 }
 
-TEST(ErrorList, BindsIntoTheWireSequenceWithoutCopying) {
+// Into a State's error_list (the generated sequence<string<191>, 16>), whose bounds are the list's:
+// every entry fits whole, the full list included.
+TEST(ErrorList, CopiesIntoTheStatesBoundedErrorList) {
   ErrorList errors;
   errors.add("slot {}: sensor read failed", "smart_tool");
   errors.add("pressure low");
-  StringSequence seq{};
-  errors.bind(seq);
-  ASSERT_EQ(seq._length, 2u);
-  EXPECT_FALSE(seq._release) << "the sample must not free our storage";
-  EXPECT_STREQ(seq._buffer[0], "slot smart_tool: sensor read failed");
-  EXPECT_STREQ(seq._buffer[1], "pressure low");
+  hubrt_test::ValveState state;
+  errors.copy_to(state.error_list());
+  ASSERT_EQ(state.view().error_list().size(), 2u);
+  EXPECT_EQ(state.view().error_list()[0], "slot smart_tool: sensor read failed");
+  EXPECT_EQ(state.view().error_list()[1], "pressure low");
   EXPECT_TRUE(errors.contains("pressure"));
   errors.clear();
-  errors.bind(seq);
-  EXPECT_EQ(seq._length, 0u);
+  errors.copy_to(state.error_list());
+  EXPECT_TRUE(state.view().error_list().empty());
+
+  for (std::size_t i = 0; i < ErrorList::kMaxEntries + 2; ++i) errors.add("{:=>190}", i);
+  errors.copy_to(state.error_list());
+  ASSERT_EQ(state.view().error_list().size(), ErrorList::kMaxEntries);
+  EXPECT_EQ(state.view().error_list()[0].size(), 190u);
+  EXPECT_EQ(state.view().error_list()[ErrorList::kMaxEntries - 1], "... and 3 more errors");
 }
 
 TEST(ErrorList, OverflowIsCountedInTheLastEntry) {

@@ -28,7 +28,7 @@ class RecordingSink final : public StateSink<ValveState> {
  public:
   explicit RecordingSink(const ManualClock& clock) : clock_(clock) {}
   Status publish(const ValveState& state) noexcept override {
-    published.push_back({clock_.now().mono, state.echo.action == nullptr ? "" : state.echo.action, in_cycle});
+    published.push_back({clock_.now().mono, std::string(state.echo.action), in_cycle});
     return Status::ok();
   }
   struct Published {

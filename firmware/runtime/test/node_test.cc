@@ -47,7 +47,7 @@ class NodeTest : public ::testing::Test {
     step();
     ASSERT_TRUE(node_->publish(clock_.now()).is_ok());
   }
-  const ValveState& state() const { return node_->state(); }
+  const ValveState& state() const { return node_->state().wire(); }
 
   ManualClock clock_;
   ValveWorld world_;

@@ -20,24 +20,20 @@ struct OwnedValveCommand {
   float pressure_bar = 2.5f;
   std::vector<std::string> tags;
 
-  // The wire struct, pointing into this object; valid until it is changed or destroyed.
+  // The wire struct (its tags point into this object); valid until it is changed or destroyed.
+  // Strings longer than the IDL bound (256) are cut, as no peer could send them.
   ValveCommand wire() {
-    tag_pointers_.clear();
-    for (auto& tag : tags) tag_pointers_.push_back(tag.data());
-    ValveCommand c{};
-    c.target_type = target_type.data();
-    c.target_name = target_name.data();
-    c.action = action.data();
-    c.pressure_bar = pressure_bar;
-    c.tags._length = static_cast<std::uint32_t>(tag_pointers_.size());
-    c.tags._maximum = c.tags._length;
-    c.tags._buffer = tag_pointers_.data();
-    c.tags._release = false;
-    return c;
+    message_ = hubrt_test::ValveCommand();
+    message_.set_target_type(target_type);
+    message_.set_target_name(target_name);
+    message_.set_action(action);
+    message_.set_pressure_bar(pressure_bar);
+    for (const auto& tag : tags) message_.tags().push_back(tag);
+    return message_.wire();
   }
 
  private:
-  std::vector<char*> tag_pointers_;
+  hubrt_test::ValveCommand message_;
 };
 
 class QueueSource final : public CommandSource<ValveCommand> {

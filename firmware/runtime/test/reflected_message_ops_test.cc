@@ -44,7 +44,7 @@ TEST_F(ReflectedOpsTest, CopyIsDeepAndLivesInTheArena) {
   EXPECT_NE(dst.action, src.action);
   EXPECT_NE(dst.tags._buffer, src.tags._buffer);
   EXPECT_FALSE(dst.tags._release);
-  a.action[0] = 'X';  // mutate the source's storage: the copy must not see it
+  src.action[0] = 'X';  // mutate the source: the copy must not see it
   EXPECT_STREQ(dst.action, "open");
   EXPECT_GT(arena_.used(), 0u);
 }
@@ -56,7 +56,8 @@ TEST_F(ReflectedOpsTest, CopyFailsCleanlyWhenTheArenaIsTooSmall) {
   ValveCommand src = a.wire();
   ValveCommand dst{};
   EXPECT_FALSE(ops_.copy_into(&src, &dst, tiny));
-  EXPECT_EQ(dst.action, nullptr) << "left zeroed, never half-copied";
+  EXPECT_STREQ(dst.action, "") << "left zeroed, never half-copied";
+  EXPECT_EQ(dst.tags._buffer, nullptr);
 }
 
 TEST(StringProblem, AcceptsPlainAndMultibyteText) {

@@ -80,7 +80,7 @@ TEST(SteadyCycle, AllocatesNothing) {
   // It really ran: states published, the watchdog tripped and the node recovered.
   EXPECT_GE(sink.count, static_cast<std::uint64_t>(kCycles - 5));
   EXPECT_GT(world.updates_without_command, 0);
-  EXPECT_TRUE(node_ref.state().fresh_msg);
+  EXPECT_TRUE(node_ref.state().fresh_msg());
   EXPECT_EQ(node_ref.rejected(), 0u);
 }
 

@@ -8,11 +8,11 @@
 
 #include "hubrt/runtime/node.h"
 
-#include "valve_test.h"
+#include "valve_test_typed.h"
 
 namespace hubrt::runtime::testing {
 
-using ValveCommand = hubrt_test_msg_dds__ValveCommand_;
+using ValveCommand = hubrt_test_msg_dds__ValveCommand_;  // the wire types, for the ports
 using ValveState = hubrt_test_msg_dds__ValveState_;
 
 struct ValveWorld {  // what the test observes and pokes, shared with the logic by reference
@@ -29,16 +29,16 @@ struct ValveWorld {  // what the test observes and pokes, shared with the logic 
 
 class ValveLogic {
  public:
-  using Command = ValveCommand;
-  using State = ValveState;
+  using Command = hubrt_test::ValveCommandView;
+  using State = hubrt_test::ValveState;
   static constexpr std::string_view kType = "valve";
   static constexpr std::array<std::string_view, 3> kActions{"open", "close", "reset"};
 
   explicit ValveLogic(ValveWorld& world) : world_(&world) {}
 
   bool validate(const Command& command, Problem& problem) const noexcept {
-    if (command.pressure_bar < 0.0f || command.pressure_bar > 10.0f) {
-      problem.format("pressure_bar {} is out of range [0, 10]", command.pressure_bar);
+    if (command.pressure_bar() < 0.0f || command.pressure_bar() > 10.0f) {
+      problem.format("pressure_bar {} is out of range [0, 10]", command.pressure_bar());
       return false;
     }
     return true;
@@ -58,15 +58,15 @@ class ValveLogic {
       return;
     }
     ++world_->updates_with_command;
-    world_->last_action = command->action;  // test-only bookkeeping; allocation-free for short actions
-    world_->open = !fault_latched_ && std::string_view(command->action) == "open";
+    world_->last_action = command->action();  // test-only bookkeeping; allocation-free for short actions
+    world_->open = !fault_latched_ && command->action() == "open";
   }
   void reset() noexcept {
     ++world_->resets;
     fault_latched_ = false;
   }
   void report(State& state, ErrorList& errors, Time /*now*/) noexcept {
-    state.open = world_->open;
+    state.set_open(world_->open);
     if (fault_latched_) errors.add("overpressure: valve held closed until reset");
     if (world_->device_missing) errors.add("valve device not available");
   }

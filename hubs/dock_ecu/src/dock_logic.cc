@@ -51,7 +51,6 @@ Expected<DockLogic> DockLogic::create(const std::vector<SlotConfig>& slots,
   for (std::size_t i = 0; i < slots.size(); ++i) {
     logic.slots_.push_back(Slot{slots[i].name, std::move(sensors[i])});
   }
-  logic.wire_slots_.resize(logic.slots_.size());
   return logic;
 }
 
@@ -88,10 +87,13 @@ void DockLogic::reset() noexcept {
 }
 
 void DockLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) noexcept {
+  // parse_slots() allows at most kMaxSlots, the sequence's bound, so every slot fits.
+  const auto reported = state.slots();
+  reported.resize(slots_.size());
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     const Slot& slot = slots_[i];
-    wire_slots_[i].name = const_cast<char*>(slot.name.c_str());  // NOLINT: wire type wants char*
-    wire_slots_[i].occupied = slot.occupied;
+    reported[i].set_name(slot.name);
+    reported[i].set_occupied(slot.occupied);
     if (!slot.sensor.is_open()) {
       errors.add("slot '{}': sensor {} not available: {}", slot.name, slot.sensor.config().signal,
                  slot.sensor.error());
@@ -100,10 +102,6 @@ void DockLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) n
                  slot.sensor.config().signal, slot.failures, to_string(slot.last_failure));
     }
   }
-  state.slots._buffer = wire_slots_.data();
-  state.slots._length = static_cast<std::uint32_t>(wire_slots_.size());
-  state.slots._maximum = state.slots._length;
-  state.slots._release = false;
 }
 
 }  // namespace hubrt::dock_ecu

@@ -29,11 +29,11 @@ Expected<std::vector<SlotConfig>> parse_slots(const config::NodeConfig& node);
 
 class DockLogic {
  public:
-  using Command = DockCommand;
-  using State = DockState;
+  using Command = hub_msgs::DockCommandView;
+  using State = hub_msgs::DockState;
   static constexpr std::string_view kType = "dock";
   static constexpr std::array<std::string_view, 2> kActions{"monitor", "reset"};
-  static constexpr std::size_t kMaxSlots = 16;
+  static constexpr std::size_t kMaxSlots = 16;  // = the bound of DockState.slots in dock.idl
 
   // `sensors`: one per slot, in the order of `slots`, opened by the hub type
   // (open_slot_sensors()); one that is not open is reported and retried.
@@ -70,7 +70,6 @@ class DockLogic {
   DockLogic() = default;
 
   std::vector<Slot> slots_;
-  std::vector<hub_msgs_msg_dds__DockSlot_> wire_slots_;
 };
 
 // What the node needs from the board.

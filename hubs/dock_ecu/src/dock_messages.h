@@ -1,28 +1,25 @@
-// The Dock ECU's wire types, registered for the typed DDS layer.
+// The Dock ECU's message types: the classes generated from dock.idl and dock_ecu.idl
+// (firmware/msgs/README.md, "Typed accessors"); their _typed.h headers also register the topics.
 #pragma once
 
 #include <string_view>
 
-#include "hubrt/dds/topic_type.h"
-
-#include "dock.h"
-#include "dock_ecu.h"
 #include "dock_ecu_reflect.h"
+#include "dock_ecu_typed.h"
 #include "dock_reflect.h"
-
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__DockCommand_, hub_msgs_msg_dds__DockCommand__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__DockState_, hub_msgs_msg_dds__DockState__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__DockEcuCommand_, hub_msgs_msg_dds__DockEcuCommand__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__DockEcuState_, hub_msgs_msg_dds__DockEcuState__desc);
+#include "dock_typed.h"
 
 namespace hubrt::dock_ecu {
-using DockCommand = hub_msgs_msg_dds__DockCommand_;
-using DockState = hub_msgs_msg_dds__DockState_;
+
+// The C structs on the wire, for tools and tests that talk DDS directly (logic uses the classes).
+using DockCommand = hub_msgs::DockCommand::Wire;
+using DockState = hub_msgs::DockState::Wire;
 
 // The hub layout's types (NodeWiring's HubTypes).
 struct DockEcuTypes {
-  using Command = hub_msgs_msg_dds__DockEcuCommand_;
-  using State = hub_msgs_msg_dds__DockEcuState_;
+  using Command = hub_msgs::DockEcuCommandView;
+  using State = hub_msgs::DockEcuState;
   static constexpr std::string_view kType = "dock_ecu";
 };
+
 }  // namespace hubrt::dock_ecu

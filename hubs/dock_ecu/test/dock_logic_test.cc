@@ -13,11 +13,11 @@ namespace {
 
 using std::chrono::milliseconds;
 
-std::string slot_name(const DockState& state, std::size_t i) {
-  return state.slots._buffer[i].name;
+std::string slot_name(const hub_msgs::DockState& state, std::size_t i) {
+  return std::string(state.slots()[i].name());
 }
-bool slot_occupied(const DockState& state, std::size_t i) {
-  return state.slots._buffer[i].occupied;
+bool slot_occupied(const hub_msgs::DockState& state, std::size_t i) {
+  return state.slots()[i].occupied();
 }
 
 class DockLogicTest : public ::testing::Test {
@@ -46,12 +46,12 @@ class DockLogicTest : public ::testing::Test {
   }
 
   // One cycle of the logic at the current time; returns the State it reports.
-  DockState cycle(DockLogic& logic) {
+  hub_msgs::DockState cycle(DockLogic& logic) {
     const Time now = clock_.now().mono;
     logic.read_inputs(now);
     logic.update(nullptr, now);
     errors_.clear();
-    DockState state{};
+    hub_msgs::DockState state;
     logic.report(state, errors_, now);
     return state;
   }
@@ -77,8 +77,8 @@ TEST_F(DockLogicTest, TheShippedConfigurationHasFourSlotsOnTheBoard) {
 TEST_F(DockLogicTest, ReportsEverySlotWithItsName) {
   DockLogic logic = make_logic();
   clock_.advance(milliseconds(100));  // past any start-up bounce and the debounce window
-  DockState state = cycle(logic);
-  ASSERT_EQ(state.slots._length, 4u);
+  hub_msgs::DockState state = cycle(logic);
+  ASSERT_EQ(state.slots().size(), 4u);
   EXPECT_EQ(slot_name(state, 0), "ladder_frame_tool");
   EXPECT_EQ(slot_name(state, 3), "spare");
   // host-sim.yaml: ladder-frame and filter tools start docked, the robot holds the smart tool.
@@ -115,7 +115,7 @@ TEST_F(DockLogicTest, AReadFailureIsLatchedUntilReset) {
   ASSERT_TRUE(wiring.is_ok());
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kOk);
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
-  DockState state = cycle(logic);
+  hub_msgs::DockState state = cycle(logic);
   EXPECT_FALSE(slot_occupied(state, 1)) << "an unreadable slot never claims a tool is home";
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault) << "latched until a reset";
   ASSERT_EQ(errors_.size(), 1u);
@@ -147,7 +147,7 @@ TEST_F(DockLogicTest, AMissingChipIsReportedAndTheOtherSlotsWork) {
   clock_.advance(std::chrono::seconds(3));  // past the retry interval
   cycle(logic);
   clock_.advance(milliseconds(100));
-  DockState state = cycle(logic);
+  hub_msgs::DockState state = cycle(logic);
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
   EXPECT_TRUE(slot_occupied(state, 0));
 }

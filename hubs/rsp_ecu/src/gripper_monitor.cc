@@ -5,7 +5,7 @@
 namespace hubrt::rsp_ecu {
 namespace {
 
-const char* on_off(bool active) noexcept {
+std::string_view on_off(bool active) noexcept {
   return active ? "on" : "off";
 }
 
@@ -61,7 +61,7 @@ void GripperMonitor::supervise(bool active, Time now) noexcept {
   }
 }
 
-const char* GripperMonitor::confirm_name() const noexcept {
+std::string_view GripperMonitor::confirm_name() const noexcept {
   switch (confirm_) {
     case Confirm::kNotConnected:
       return "not_connected";

@@ -41,7 +41,7 @@ class GripperMonitor {
 
   [[nodiscard]] Confirm confirm() const noexcept { return confirm_; }
   // "not_connected", "connected", "moving" or "failed".
-  [[nodiscard]] const char* confirm_name() const noexcept;
+  [[nodiscard]] std::string_view confirm_name() const noexcept;
   [[nodiscard]] bool faulted() const noexcept { return !fault_.empty(); }
   // The latched fault, for error_list (empty when none).
   [[nodiscard]] std::string_view fault() const noexcept { return fault_.view(); }

@@ -21,7 +21,7 @@ void LockPosition::advance(Time now) noexcept {
   if (!settled_ && stroke_start_ && now - *stroke_start_ >= actuation_) settled_ = true;
 }
 
-const char* LockPosition::name() const noexcept {
+std::string_view LockPosition::name() const noexcept {
   if (settled_) return open_ ? "open" : "closed";
   return open_ ? "opening" : "closing";
 }

@@ -29,7 +29,7 @@ class LockPosition {
   // The lock is closed and not moving.
   [[nodiscard]] bool closed() const noexcept { return settled_ && !open_; }
   // "closed", "opening", "open" or "closing".
-  [[nodiscard]] const char* name() const noexcept;
+  [[nodiscard]] std::string_view name() const noexcept;
 
  private:
   Duration actuation_;

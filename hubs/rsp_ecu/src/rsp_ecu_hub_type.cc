@@ -82,7 +82,8 @@ class RspEcuHubType final : public hub_api::HubType {
     for (const config::NodeConfig& node : config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock = hub_api::Subscriptions::check<dock_ecu::DockState>(config, settings->dock_subscription);
+      auto dock =
+          hub_api::Subscriptions::check<hub_msgs::DockStateView>(config, settings->dock_subscription);
       if (!dock) return dock;
       auto wired = hub_api::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
       if (!wired) return wired;
@@ -97,7 +98,7 @@ class RspEcuHubType final : public hub_api::HubType {
     for (const config::NodeConfig& node : context.config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock = context.subscriptions.get<dock_ecu::DockState>(settings->dock_subscription);
+      auto dock = context.subscriptions.get<hub_msgs::DockStateView>(settings->dock_subscription);
       if (!dock) return std::move(dock).error();
       auto devices = open_rsp_devices(*settings, context.board, context.backend, now);
       if (!devices) {

@@ -7,16 +7,6 @@
 #include "unlock_interlock.h"
 
 namespace hubrt::rsp_ecu {
-namespace {
-
-std::string_view view(const char* text) noexcept {
-  return text == nullptr ? std::string_view() : text;
-}
-char* wire(const char* text) noexcept {
-  return const_cast<char*>(text);
-}  // NOLINT: wire type wants char*
-
-}  // namespace
 
 Expected<void> check_lock_valve(const hal::DigitalOutputConfig& lock, std::string_view where) {
   // Energised = open: a board that energised it at start or on faults would drop the tool.
@@ -67,12 +57,12 @@ RspLogic::RspLogic(const RspSettings& settings, DockInput& dock, Devices devices
 }
 
 bool RspLogic::validate(const Command& command, runtime::Problem& problem) const noexcept {
-  const std::string_view gripper = view(command.gripper);
+  const std::string_view gripper = command.gripper();
   if (std::find(kGripperStates.begin(), kGripperStates.end(), gripper) == kGripperStates.end()) {
     problem.format("unknown gripper state '{}' (expected grab, release, keep, or empty for keep)", gripper);
     return false;
   }
-  if (view(command.action) == "unlock" && !unlock_allowed_) {
+  if (command.action() == "unlock" && !unlock_allowed_) {
     problem.format("unlock refused: {}; lock kept closed", unlock_blocked_.view());
     return false;
   }
@@ -145,13 +135,13 @@ runtime::NodeCondition RspLogic::condition() const noexcept {
 }
 
 void RspLogic::update(const Command* in_force, Time now) noexcept {
-  const std::string_view action = in_force == nullptr ? std::string_view() : view(in_force->action);
+  const std::string_view action = in_force == nullptr ? std::string_view() : in_force->action();
   safe_state_ = in_force == nullptr || fault_latched() || action == runtime::kResetAction;
   const bool wants_open = !safe_state_ && action == "unlock";
   unlock_refused_ = wants_open && !unlock_allowed_;
   const bool open = wants_open && unlock_allowed_;
   if (!safe_state_) {
-    const std::string_view gripper = view(in_force->gripper);
+    const std::string_view gripper = in_force->gripper();
     if (gripper == "grab") gripper_grab_ = true;
     if (gripper == "release") gripper_grab_ = false;
   }
@@ -173,12 +163,12 @@ void RspLogic::enter_safe_state() noexcept {
   safe_state_ = true;
 }
 
-const char* RspLogic::tool_name() const noexcept {
+std::string_view RspLogic::tool_name() const noexcept {
   switch (tool_.kind) {
     case ToolId::Kind::kNone:
       return "none";
     case ToolId::Kind::kOne:
-      return tool_names_[tool_.index].c_str();
+      return tool_names_[tool_.index];
     case ToolId::Kind::kUndefined:
       return "undefined";
   }
@@ -186,18 +176,18 @@ const char* RspLogic::tool_name() const noexcept {
 }
 
 void RspLogic::report(State& state, runtime::ErrorList& errors, Time /*now*/) noexcept {
-  state.tool = wire(tool_name());
-  state.locked = lock_.closed() && tool_.is_one();
-  state.lock = wire(lock_.name());
-  state.unlock_allowed = unlock_allowed_;
-  state.unlock_blocked = wire(unlock_blocked_.c_str());
-  state.gripper = wire(gripper_grab_ ? "grab" : "release");
-  state.gripper_confirm = wire(gripper_.confirm_name());
-  state.pressure_ok = pressure_ok_;
+  state.set_tool(tool_name());
+  state.set_locked(lock_.closed() && tool_.is_one());
+  state.set_lock(lock_.name());
+  state.set_unlock_allowed(unlock_allowed_);
+  state.set_unlock_blocked(unlock_blocked_.view());  // Problem: 160 bytes, the field's bound
+  state.set_gripper(gripper_grab_ ? "grab" : "release");
+  state.set_gripper_confirm(gripper_.confirm_name());
+  state.set_pressure_ok(pressure_ok_);
   // A GPIO line is read every cycle: its reading is current or, when the read failed or the chip
   // is gone, unknown (pressure_ok is then false: no proof of pressure).
-  state.pressure_known = devices_.pressure.readable;
-  state.safe_state = safe_state_;
+  state.set_pressure_known(devices_.pressure.readable);
+  state.set_safe_state(safe_state_);
 
   if (pressure_fault_)
     errors.add("{} (latched: lock held closed, gripper as it is; reset to clear)",

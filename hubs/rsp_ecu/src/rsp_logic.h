@@ -32,7 +32,7 @@
 
 namespace hubrt::rsp_ecu {
 
-using DockInput = hub_api::RemoteState<dock_ecu::DockState>;
+using DockInput = hub_api::RemoteState<hub_msgs::DockStateView>;
 
 // The node's devices, opened by the hub type (open_rsp_devices() in rsp_ecu_hub_type.h).
 struct RspDevices {
@@ -49,8 +49,8 @@ Expected<void> check_lock_valve(const hal::DigitalOutputConfig& lock, std::strin
 
 class RspLogic {
  public:
-  using Command = RspCommand;
-  using State = RspState;
+  using Command = hub_msgs::RspCommandView;
+  using State = hub_msgs::RspState;
   static constexpr std::string_view kType = "tool_changer";
   static constexpr std::array<std::string_view, 3> kActions{"lock", "unlock", "reset"};
   static constexpr std::array<std::string_view, 4> kGripperStates{"grab", "release", "keep", ""};
@@ -81,7 +81,7 @@ class RspLogic {
 
   // --- What the cycle decided, for tests and the report -------------------------------------------
   [[nodiscard]] const ToolId& tool() const noexcept { return tool_; }
-  [[nodiscard]] const char* tool_name() const noexcept;
+  [[nodiscard]] std::string_view tool_name() const noexcept;
   [[nodiscard]] bool unlock_allowed() const noexcept { return unlock_allowed_; }
   [[nodiscard]] std::string_view unlock_blocked() const noexcept { return unlock_blocked_.view(); }
   [[nodiscard]] bool lock_open_commanded() const noexcept { return lock_.open_commanded(); }

@@ -1,30 +1,30 @@
 #include "unlock_interlock.h"
 
+#include <optional>
+
 namespace hubrt::rsp_ecu {
 namespace {
 
-// The slot of `tool` in the Dock ECU State, or null when the dock does not list it.
-const hub_msgs_msg_dds__DockSlot_* find_slot(const dock_ecu::DockState& dock,
-                                             std::string_view tool) noexcept {
-  if (dock.slots._buffer == nullptr) return nullptr;
-  for (std::uint32_t i = 0; i < dock.slots._length; ++i) {
-    const auto& slot = dock.slots._buffer[i];
-    if (slot.name != nullptr && std::string_view(slot.name) == tool) return &slot;
+// The slot of `tool` in the Dock ECU State, or nothing when the dock does not list it.
+std::optional<hub_msgs::DockSlotView> find_slot(const hub_msgs::DockStateView& dock,
+                                                std::string_view tool) noexcept {
+  for (const hub_msgs::DockSlotView slot : dock.slots()) {
+    if (slot.name() == tool) return slot;
   }
-  return nullptr;
+  return std::nullopt;
 }
 
 }  // namespace
 
 bool unlock_permitted(const ToolId& tool, std::string_view tool_name,
-                      const hub_api::RemoteState<dock_ecu::DockState>& dock_input, Time now,
+                      const hub_api::RemoteState<hub_msgs::DockStateView>& dock_input, Time now,
                       runtime::Problem& why) noexcept {
   if (tool.kind == ToolId::Kind::kUndefined) {
     why.assign("tool id undefined: cannot tell which tool the changer would release");
     return false;
   }
-  const dock_ecu::DockState* dock = dock_input.fresh(now);
-  if (dock == nullptr) {
+  const std::optional<hub_msgs::DockStateView> dock = dock_input.fresh(now);
+  if (!dock) {
     const std::string_view prefix = tool.is_one() ? "cannot confirm " : "";
     const std::string_view subject = tool.is_one() ? tool_name : std::string_view();
     const std::string_view infix = tool.is_one() ? " is home: " : "";
@@ -40,12 +40,12 @@ bool unlock_permitted(const ToolId& tool, std::string_view tool_name,
     why.clear();
     return true;
   }
-  const auto* slot = find_slot(*dock, tool_name);
-  if (slot == nullptr) {
+  const std::optional<hub_msgs::DockSlotView> slot = find_slot(*dock, tool_name);
+  if (!slot) {
     why.format("the Dock ECU State lists no slot '{}': cannot confirm {} is home", tool_name, tool_name);
     return false;
   }
-  if (!slot->occupied) {
+  if (!slot->occupied()) {
     why.format("the Dock ECU does not report {} home (slot '{}' empty)", tool_name, tool_name);
     return false;
   }

@@ -26,7 +26,7 @@ namespace hubrt::rsp_ecu {
 // from cycle to cycle while the reason stays the same (the log is not flooded); on "allowed" it
 // is cleared. Deterministic in its arguments; never allocates.
 [[nodiscard]] bool unlock_permitted(const ToolId& tool, std::string_view tool_name,
-                                    const hub_api::RemoteState<dock_ecu::DockState>& dock, Time now,
+                                    const hub_api::RemoteState<hub_msgs::DockStateView>& dock, Time now,
                                     runtime::Problem& why) noexcept;
 
 }  // namespace hubrt::rsp_ecu

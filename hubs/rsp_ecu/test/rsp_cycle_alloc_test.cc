@@ -52,7 +52,8 @@ TEST(RspCycle, AllocatesNothingInSteadyState) {
   runtime::NodeOptions options;
   options.name = "rsp";
   options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
-  runtime::Node<RspLogic> node(options, std::move(*logic), source, sink, hub_api::message_ops<RspCommand>());
+  runtime::Node<RspLogic> node(options, std::move(*logic), source, sink,
+                               hub_api::message_ops<hub_msgs::RspCommand::Wire>());
 
   // Every command queued up front (the queue allocates); the smart tool is not home, so every
   // unlock is refused. The Dock ECU goes quiet after cycle 300.

@@ -54,8 +54,8 @@ class RspLogicTest : public ::testing::Test {
 
   // The tool-ID lines show `tool` ("none": no line).
   void tool_on_changer(std::string_view tool) {
-    for (const char* name : {"ladder_frame_tool", "smart_tool", "filter_tool"}) {
-      set_input(std::string("rsp.tool_id.") + name, tool == name);
+    for (const std::string_view name : {"ladder_frame_tool", "smart_tool", "filter_tool"}) {
+      set_input(std::string("rsp.tool_id.") + std::string(name), tool == name);
     }
   }
   void set_input(const std::string& signal, bool active) {
@@ -65,21 +65,21 @@ class RspLogicTest : public ::testing::Test {
   }
 
   // One cycle at the current time; returns the State the logic reports.
-  RspState cycle(RspLogic& logic, OwnedCommand* in_force) {
+  hub_msgs::RspState cycle(RspLogic& logic, OwnedCommand* in_force) {
     const Time now = clock_.now().mono;
     if (dock_slots_) dock_.arrive(*dock_slots_, now);
     logic.read_inputs(now);
-    std::optional<RspCommand> wire;
-    if (in_force != nullptr) wire = in_force->wire();
-    logic.update(wire ? &*wire : nullptr, now);
+    std::optional<hub_msgs::RspCommandView> view;
+    if (in_force != nullptr) view = in_force->view();
+    logic.update(view ? &*view : nullptr, now);
     errors_.clear();
-    RspState state{};
+    hub_msgs::RspState state;
     logic.report(state, errors_, now);
     return state;
   }
   // Cycles every 10 ms for `span` (the first at once); returns the last State.
-  RspState run_for(RspLogic& logic, Duration span, OwnedCommand* in_force) {
-    RspState state = cycle(logic, in_force);
+  hub_msgs::RspState run_for(RspLogic& logic, Duration span, OwnedCommand* in_force) {
+    hub_msgs::RspState state = cycle(logic, in_force);
     for (Duration t = kCycle; t <= span; t += kCycle) {
       clock_.advance(kCycle);
       state = cycle(logic, in_force);
@@ -108,45 +108,45 @@ class RspLogicTest : public ::testing::Test {
 
 TEST_F(RspLogicTest, StartsLockedWithTheGripperAsTheBoardOpensIt) {
   RspLogic logic = make_logic();
-  RspState state = cycle(logic, nullptr);
+  hub_msgs::RspState state = cycle(logic, nullptr);
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_TRUE(gripper_valve_energised()) << "host-sim.yaml: the gripper line opens closed (initial: true)";
-  EXPECT_STREQ(state.lock, "closing") << "until a full stroke has passed the lock may still be closing";
-  EXPECT_FALSE(state.locked);
-  EXPECT_TRUE(state.safe_state);
-  EXPECT_STREQ(state.gripper, "grab");
+  EXPECT_EQ(state.lock(), "closing") << "until a full stroke has passed the lock may still be closing";
+  EXPECT_FALSE(state.locked());
+  EXPECT_TRUE(state.safe_state());
+  EXPECT_EQ(state.gripper(), "grab");
 
   state = run_for(logic, milliseconds(200), nullptr);
-  EXPECT_STREQ(state.tool, "smart_tool") << "host-sim.yaml: the robot starts holding the smart tool";
-  EXPECT_STREQ(state.lock, "closed");
-  EXPECT_TRUE(state.locked);
-  EXPECT_TRUE(state.pressure_ok);
-  EXPECT_STREQ(state.gripper_confirm, "connected");
-  EXPECT_FALSE(state.unlock_allowed);
-  EXPECT_NE(std::string_view(state.unlock_blocked).find("no Dock ECU State received yet"),
+  EXPECT_EQ(state.tool(), "smart_tool") << "host-sim.yaml: the robot starts holding the smart tool";
+  EXPECT_EQ(state.lock(), "closed");
+  EXPECT_TRUE(state.locked());
+  EXPECT_TRUE(state.pressure_ok());
+  EXPECT_EQ(state.gripper_confirm(), "connected");
+  EXPECT_FALSE(state.unlock_allowed());
+  EXPECT_NE(std::string_view(state.unlock_blocked()).find("no Dock ECU State received yet"),
             std::string_view::npos)
-      << state.unlock_blocked;
+      << state.unlock_blocked();
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
 }
 
 TEST_F(RspLogicTest, DecodesTheToolIdLinesAndReportsAnUndefinedOne) {
   RspLogic logic = make_logic();
-  for (const char* tool : {"ladder_frame_tool", "filter_tool", "none", "smart_tool"}) {
+  for (const std::string_view tool : {"ladder_frame_tool", "filter_tool", "none", "smart_tool"}) {
     tool_on_changer(tool);
-    const RspState state = run_for(logic, milliseconds(50), nullptr);  // past the 20 ms debounce
-    EXPECT_STREQ(state.tool, tool);
+    const hub_msgs::RspState state = run_for(logic, milliseconds(50), nullptr);  // past the 20 ms debounce
+    EXPECT_EQ(state.tool(), tool);
   }
-  RspState state = run_for(logic, milliseconds(200), nullptr);
-  EXPECT_TRUE(state.locked);
+  hub_msgs::RspState state = run_for(logic, milliseconds(200), nullptr);
+  EXPECT_TRUE(state.locked());
   tool_on_changer("none");
   state = run_for(logic, milliseconds(50), nullptr);
-  EXPECT_FALSE(state.locked) << "locked means locked onto a tool";
+  EXPECT_FALSE(state.locked()) << "locked means locked onto a tool";
 
   tool_on_changer("smart_tool");
   set_input("rsp.tool_id.filter_tool", true);
   state = run_for(logic, milliseconds(50), nullptr);
-  EXPECT_STREQ(state.tool, "undefined");
-  EXPECT_FALSE(state.locked);
+  EXPECT_EQ(state.tool(), "undefined");
+  EXPECT_FALSE(state.locked());
   EXPECT_TRUE(errors_.contains("tool id undefined: 2 tool-ID lines set at once (smart_tool, filter_tool)"))
       << errors_.at(0);
 }
@@ -157,41 +157,40 @@ TEST_F(RspLogicTest, UnlockOpensTheChangerWhenTheDockReportsThatToolHome) {
   RspLogic logic = make_logic();
   dock_reports(true, true, true);
   OwnedCommand unlock = command("unlock");
-  RspState state = cycle(logic, &unlock);
-  EXPECT_TRUE(state.unlock_allowed);
-  EXPECT_STREQ(state.unlock_blocked, "");
+  hub_msgs::RspState state = cycle(logic, &unlock);
+  EXPECT_TRUE(state.unlock_allowed());
+  EXPECT_EQ(state.unlock_blocked(), "");
   EXPECT_TRUE(lock_valve_energised());
-  EXPECT_STREQ(state.lock, "opening");
-  EXPECT_FALSE(state.locked);
-  EXPECT_FALSE(state.safe_state);
+  EXPECT_EQ(state.lock(), "opening");
+  EXPECT_FALSE(state.locked());
+  EXPECT_FALSE(state.safe_state());
   state = run_for(logic, milliseconds(200), &unlock);
-  EXPECT_STREQ(state.lock, "open");
+  EXPECT_EQ(state.lock(), "open");
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
 
   // The robot moves away: the tool stays in the dock, the ID lines go quiet, the changer stays open.
   tool_on_changer("none");
   state = run_for(logic, milliseconds(50), &unlock);
-  EXPECT_STREQ(state.tool, "none");
+  EXPECT_EQ(state.tool(), "none");
   EXPECT_TRUE(lock_valve_energised());
 
   OwnedCommand lock = command("lock");
   state = cycle(logic, &lock);
   EXPECT_FALSE(lock_valve_energised());
-  EXPECT_STREQ(state.lock, "closing");
+  EXPECT_EQ(state.lock(), "closing");
 }
 
 TEST_F(RspLogicTest, UnlockIsRefusedWhenTheToolIsNotHome) {
   RspLogic logic = make_logic();
   dock_reports(true, true, false);  // the smart tool is on the robot, not in its slot
   OwnedCommand unlock = command("unlock");
-  const RspState state = run_for(logic, milliseconds(500), &unlock);
+  const hub_msgs::RspState state = run_for(logic, milliseconds(500), &unlock);
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_TRUE(fake_->history("rsp.lock_valve").empty() || !fake_->history("rsp.lock_valve").back().active);
   for (const auto& change : fake_->history("rsp.lock_valve")) EXPECT_FALSE(change.active) << "never opened";
-  EXPECT_TRUE(state.locked);
-  EXPECT_FALSE(state.unlock_allowed);
-  EXPECT_STREQ(state.unlock_blocked,
-               "the Dock ECU does not report smart_tool home (slot 'smart_tool' empty)");
+  EXPECT_TRUE(state.locked());
+  EXPECT_FALSE(state.unlock_allowed());
+  EXPECT_EQ(state.unlock_blocked(), "the Dock ECU does not report smart_tool home (slot 'smart_tool' empty)");
   ASSERT_EQ(errors_.size(), 1u);
   EXPECT_EQ(errors_.at(0),
             "unlock refused: the Dock ECU does not report smart_tool home (slot 'smart_tool' empty); lock "
@@ -203,8 +202,8 @@ TEST_F(RspLogicTest, UnlockIsRefusedWhenOnlyAnotherToolIsHome) {
   tool_on_changer("filter_tool");
   dock_reports(true, false, true);  // ladder-frame and smart tools home, the filter tool is not
   OwnedCommand unlock = command("unlock");
-  const RspState state = run_for(logic, milliseconds(300), &unlock);
-  EXPECT_STREQ(state.tool, "filter_tool");
+  const hub_msgs::RspState state = run_for(logic, milliseconds(300), &unlock);
+  EXPECT_EQ(state.tool(), "filter_tool");
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_TRUE(errors_.contains("filter_tool home (slot 'filter_tool' empty)"));
 }
@@ -230,9 +229,9 @@ TEST_F(RspLogicTest, AnOpenChangerClosesTheCycleTheDockStateGoesStale) {
   run_for(logic, milliseconds(500), &unlock);
   EXPECT_TRUE(lock_valve_energised()) << "500 ms without a Dock State is still within its timeout";
   clock_.advance(kCycle);
-  const RspState state = cycle(logic, &unlock);
+  const hub_msgs::RspState state = cycle(logic, &unlock);
   EXPECT_FALSE(lock_valve_energised()) << "lost the moment it is older than the timeout";
-  EXPECT_STREQ(state.lock, "closing");
+  EXPECT_EQ(state.lock(), "closing");
   EXPECT_TRUE(errors_.contains("Dock ECU State older than 0.50 s (/dock_ecu/dock/state)")) << errors_.at(0);
 
   dock_reports(true, true, true);
@@ -257,8 +256,8 @@ TEST_F(RspLogicTest, AnUndefinedToolIdRefusesUnlockEvenWithEverySlotOccupied) {
   set_input("rsp.tool_id.ladder_frame_tool", true);
   dock_reports(true, true, true);
   OwnedCommand unlock = command("unlock");
-  const RspState state = run_for(logic, milliseconds(300), &unlock);
-  EXPECT_STREQ(state.tool, "undefined");
+  const hub_msgs::RspState state = run_for(logic, milliseconds(300), &unlock);
+  EXPECT_EQ(state.tool(), "undefined");
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_TRUE(errors_.contains("unlock refused: tool id undefined"));
 }
@@ -270,8 +269,8 @@ TEST_F(RspLogicTest, AnUnreadableToolIdLineRefusesUnlock) {
   ASSERT_TRUE(wiring.is_ok());
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
   OwnedCommand unlock = command("unlock");
-  const RspState state = run_for(logic, milliseconds(100), &unlock);
-  EXPECT_STREQ(state.tool, "undefined") << "a line that cannot be read might be the tool that is there";
+  const hub_msgs::RspState state = run_for(logic, milliseconds(100), &unlock);
+  EXPECT_EQ(state.tool(), "undefined") << "a line that cannot be read might be the tool that is there";
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_TRUE(errors_.contains("input rsp.tool_id.ladder_frame_tool failed to read: i/o error"))
       << errors_.at(0);
@@ -291,7 +290,7 @@ TEST_F(RspLogicTest, WithNoToolTheChangerOpensOnlyWhileTheDockIsAlive) {
 TEST_F(RspLogicTest, ValidateRejectsAnUnlockTheInterlockDoesNotAllow) {
   RspLogic logic = make_logic();
   OwnedCommand unlock = command("unlock");
-  const RspCommand wire = unlock.wire();
+  const hub_msgs::RspCommandView wire = unlock.view();
   runtime::Problem problem;
   EXPECT_FALSE(logic.validate(wire, problem)) << "nothing evaluated yet: not allowed";
   dock_reports(true, true, false);
@@ -307,21 +306,21 @@ TEST_F(RspLogicTest, ValidateRejectsAnUnlockTheInterlockDoesNotAllow) {
   dock_silent();
   clock_.advance(milliseconds(600));
   cycle(logic, nullptr);
-  EXPECT_TRUE(logic.validate(lock.wire(), problem)) << "locking is always allowed";
+  EXPECT_TRUE(logic.validate(lock.view(), problem)) << "locking is always allowed";
 }
 
 TEST_F(RspLogicTest, ValidateRejectsAnUnknownGripperState) {
   RspLogic logic = make_logic();
   runtime::Problem problem;
-  for (const char* good : {"grab", "release", "keep", ""}) {
+  for (const std::string_view good : {"grab", "release", "keep", ""}) {
     OwnedCommand c = command("lock", good);
-    EXPECT_TRUE(logic.validate(c.wire(), problem)) << good;
+    EXPECT_TRUE(logic.validate(c.view(), problem)) << good;
   }
   OwnedCommand bad = command("lock", "open");
-  EXPECT_FALSE(logic.validate(bad.wire(), problem));
+  EXPECT_FALSE(logic.validate(bad.view(), problem));
   EXPECT_EQ(problem.view(), "unknown gripper state 'open' (expected grab, release, keep, or empty for keep)");
   OwnedCommand shouting = command("reset", "GRAB");
-  EXPECT_FALSE(logic.validate(shouting.wire(), problem)) << "exact strings only";
+  EXPECT_FALSE(logic.validate(shouting.view(), problem)) << "exact strings only";
 }
 
 // --- The gripper -----------------------------------------------------------------------------------
@@ -330,19 +329,19 @@ TEST_F(RspLogicTest, TheGripperFollowsItsCommandAndKeepLeavesItAsItIs) {
   RspLogic logic = make_logic();
   tool_on_changer("ladder_frame_tool");
   OwnedCommand release = command("lock", "release");
-  RspState state = run_for(logic, milliseconds(300), &release);
+  hub_msgs::RspState state = run_for(logic, milliseconds(300), &release);
   EXPECT_FALSE(gripper_valve_energised());
-  EXPECT_STREQ(state.gripper, "release");
-  EXPECT_STREQ(state.gripper_confirm, "not_connected");
+  EXPECT_EQ(state.gripper(), "release");
+  EXPECT_EQ(state.gripper_confirm(), "not_connected");
   OwnedCommand keep = command("lock", "keep");
   run_for(logic, milliseconds(100), &keep);
   EXPECT_FALSE(gripper_valve_energised());
   OwnedCommand grab = command("lock", "grab");
   state = cycle(logic, &grab);
   EXPECT_TRUE(gripper_valve_energised());
-  EXPECT_STREQ(state.gripper_confirm, "not_connected") << "the gripper takes 150 ms to close";
+  EXPECT_EQ(state.gripper_confirm(), "not_connected") << "the gripper takes 150 ms to close";
   state = run_for(logic, milliseconds(300), &grab);
-  EXPECT_STREQ(state.gripper_confirm, "connected");
+  EXPECT_EQ(state.gripper_confirm(), "connected");
   OwnedCommand empty = command("lock", "");
   run_for(logic, milliseconds(100), &empty);
   EXPECT_TRUE(gripper_valve_energised());
@@ -357,7 +356,7 @@ TEST_F(RspLogicTest, AGripThatFailsIsLatchedAfterTheConfirmDelayAndHoldsTheSafeS
   run_for(logic, milliseconds(300), &release);
   fake_->valve("rsp.gripper_valve")->stick(true);  // the gripper jams open
   OwnedCommand grab = command("lock", "grab");
-  RspState state = run_for(logic, milliseconds(490), &grab);
+  hub_msgs::RspState state = run_for(logic, milliseconds(490), &grab);
   EXPECT_FALSE(logic.fault_latched()) << "within the 500 ms confirm delay nothing is called failed";
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
   state = run_for(logic, milliseconds(20), &grab);
@@ -365,7 +364,7 @@ TEST_F(RspLogicTest, AGripThatFailsIsLatchedAfterTheConfirmDelayAndHoldsTheSafeS
   EXPECT_TRUE(errors_.contains("gripper failed to grab: confirm lines still show not_connected after"))
       << errors_.at(0);
   EXPECT_TRUE(errors_.contains("latched: lock held closed, gripper as it is; reset to clear"));
-  EXPECT_TRUE(state.safe_state);
+  EXPECT_TRUE(state.safe_state());
   EXPECT_TRUE(gripper_valve_energised()) << "the gripper stays as it is";
 
   // While latched, no gripper or lock command acts.
@@ -377,7 +376,7 @@ TEST_F(RspLogicTest, AGripThatFailsIsLatchedAfterTheConfirmDelayAndHoldsTheSafeS
   OwnedCommand unlock = command("unlock");
   state = run_for(logic, milliseconds(100), &unlock);
   EXPECT_FALSE(lock_valve_energised());
-  EXPECT_STREQ(state.unlock_blocked, "a gripper failure is latched; reset first");
+  EXPECT_EQ(state.unlock_blocked(), "a gripper failure is latched; reset first");
 }
 
 TEST_F(RspLogicTest, ConfirmLinesThatDisagreeAreLatchedAsAFailedGripper) {
@@ -386,11 +385,11 @@ TEST_F(RspLogicTest, ConfirmLinesThatDisagreeAreLatchedAsAFailedGripper) {
   OwnedCommand grab = command("lock", "grab");
   run_for(logic, milliseconds(300), &grab);
   fake_->valve("rsp.gripper_valve")->fail_confirm(1, false);  // sensor B drops out
-  RspState state = run_for(logic, milliseconds(400), &grab);
-  EXPECT_STREQ(state.gripper_confirm, "moving");
+  hub_msgs::RspState state = run_for(logic, milliseconds(400), &grab);
+  EXPECT_EQ(state.gripper_confirm(), "moving");
   EXPECT_FALSE(logic.fault_latched());
   state = run_for(logic, milliseconds(200), &grab);
-  EXPECT_STREQ(state.gripper_confirm, "failed");
+  EXPECT_EQ(state.gripper_confirm(), "failed");
   EXPECT_TRUE(errors_.contains("gripper failed: confirm lines disagree (A on, B off) for more than 500 ms"))
       << errors_.at(0);
 }
@@ -417,10 +416,10 @@ TEST_F(RspLogicTest, APressureDropMidOperationLatchesAndHoldsTheSafeStateUntilRe
   cycle(logic, &release);
   ASSERT_FALSE(gripper_valve_energised());
   fake_->pressure_supply("main_air")->drop();
-  RspState state = run_for(logic, milliseconds(100), &release);  // past the switch's 50 ms debounce
-  EXPECT_FALSE(state.pressure_ok);
-  EXPECT_TRUE(state.pressure_known) << "a switch that reads off is a known pressure loss";
-  EXPECT_TRUE(state.safe_state);
+  hub_msgs::RspState state = run_for(logic, milliseconds(100), &release);  // past the switch's 50 ms debounce
+  EXPECT_FALSE(state.pressure_ok());
+  EXPECT_TRUE(state.pressure_known()) << "a switch that reads off is a known pressure loss";
+  EXPECT_TRUE(state.safe_state());
   EXPECT_TRUE(
       errors_.contains("pressure failure: supply pressure lost (rsp.pressure_ok off) (latched: lock held "
                        "closed, gripper as it is; reset to clear)"))
@@ -435,21 +434,21 @@ TEST_F(RspLogicTest, APressureDropMidOperationLatchesAndHoldsTheSafeStateUntilRe
 
   fake_->pressure_supply("main_air")->restore();
   state = run_for(logic, milliseconds(1000), &grab_again);
-  EXPECT_TRUE(state.pressure_ok);
+  EXPECT_TRUE(state.pressure_ok());
   EXPECT_TRUE(logic.fault_latched()) << "pressure back is not enough: latched until reset";
 
   logic.reset();
   OwnedCommand reset = command("reset");
   state = run_for(logic, milliseconds(100), &reset);
   EXPECT_FALSE(logic.fault_latched());
-  EXPECT_TRUE(state.safe_state) << "reset itself keeps the lock closed and the gripper as it is";
+  EXPECT_TRUE(state.safe_state()) << "reset itself keeps the lock closed and the gripper as it is";
   EXPECT_FALSE(gripper_valve_energised());
   EXPECT_TRUE(errors_.empty()) << errors_.at(0);
 
   state = run_for(logic, milliseconds(300), &grab_again);
   EXPECT_TRUE(gripper_valve_energised()) << "a fresh command acts after the reset";
-  EXPECT_FALSE(state.safe_state);
-  EXPECT_STREQ(state.gripper_confirm, "connected");
+  EXPECT_FALSE(state.safe_state());
+  EXPECT_EQ(state.gripper_confirm(), "connected");
 }
 
 TEST_F(RspLogicTest, APressureDropWhileOpenClosesTheLockAndAResetWithoutPressureLatchesAgain) {
@@ -459,11 +458,11 @@ TEST_F(RspLogicTest, APressureDropWhileOpenClosesTheLockAndAResetWithoutPressure
   run_for(logic, milliseconds(300), &unlock);
   ASSERT_TRUE(lock_valve_energised());
   fake_->pressure_supply("main_air")->drop();
-  RspState state = run_for(logic, milliseconds(100), &unlock);
+  hub_msgs::RspState state = run_for(logic, milliseconds(100), &unlock);
   EXPECT_FALSE(lock_valve_energised());
-  EXPECT_STREQ(state.lock, "closing") << "no air: the lock cannot move until pressure returns";
-  EXPECT_FALSE(state.unlock_allowed);
-  EXPECT_STREQ(state.unlock_blocked, "a pressure failure is latched; reset first");
+  EXPECT_EQ(state.lock(), "closing") << "no air: the lock cannot move until pressure returns";
+  EXPECT_FALSE(state.unlock_allowed());
+  EXPECT_EQ(state.unlock_blocked(), "a pressure failure is latched; reset first");
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault);
   logic.reset();
   OwnedCommand reset = command("reset");
@@ -472,31 +471,31 @@ TEST_F(RspLogicTest, APressureDropWhileOpenClosesTheLockAndAResetWithoutPressure
   fake_->pressure_supply("main_air")->restore();
   // The stroke starts over once the switch shows pressure again (after its 50 ms debounce).
   state = run_for(logic, milliseconds(240), &reset);
-  EXPECT_STREQ(state.lock, "closing");
+  EXPECT_EQ(state.lock(), "closing");
   state = run_for(logic, milliseconds(20), &reset);
-  EXPECT_STREQ(state.lock, "closed");
+  EXPECT_EQ(state.lock(), "closed");
 }
 
 TEST_F(RspLogicTest, AnUnreadablePressureSwitchIsAPressureFailure) {
   auto wiring = fake_->wiring("rsp.pressure_ok");
   ASSERT_TRUE(wiring.is_ok());
   RspLogic logic = make_logic();
-  RspState state = run_for(logic, milliseconds(100), nullptr);  // past the switch's 50 ms debounce
-  ASSERT_TRUE(state.pressure_ok);
-  EXPECT_TRUE(state.pressure_known);
+  hub_msgs::RspState state = run_for(logic, milliseconds(100), nullptr);  // past the switch's 50 ms debounce
+  ASSERT_TRUE(state.pressure_ok());
+  EXPECT_TRUE(state.pressure_known());
 
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
   clock_.advance(kCycle);
   state = cycle(logic, nullptr);
-  EXPECT_FALSE(state.pressure_known) << "the read failed: the pressure is unknown this very cycle";
-  EXPECT_FALSE(state.pressure_ok) << "not the last good reading";
+  EXPECT_FALSE(state.pressure_known()) << "the read failed: the pressure is unknown this very cycle";
+  EXPECT_FALSE(state.pressure_ok()) << "not the last good reading";
   EXPECT_TRUE(errors_.contains("pressure failure: pressure switch rsp.pressure_ok cannot be read"))
       << errors_.at(0);
 
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, false).is_ok());
   state = run_for(logic, milliseconds(100), nullptr);
-  EXPECT_TRUE(state.pressure_known);
-  EXPECT_TRUE(state.pressure_ok) << "a good read brings the value back (the failure stays latched)";
+  EXPECT_TRUE(state.pressure_known());
+  EXPECT_TRUE(state.pressure_ok()) << "a good read brings the value back (the failure stays latched)";
   EXPECT_TRUE(logic.fault_latched());
 }
 
@@ -512,10 +511,10 @@ TEST_F(RspLogicTest, NoCommandInForceClosesTheLockAndKeepsTheGripperEitherWay) {
     run_for(logic, milliseconds(300), &unlock);
     ASSERT_TRUE(lock_valve_energised());
     ASSERT_EQ(gripper_valve_energised(), grab);
-    const RspState state = cycle(logic, nullptr);  // the watchdog tripped
+    const hub_msgs::RspState state = cycle(logic, nullptr);  // the watchdog tripped
     EXPECT_FALSE(lock_valve_energised());
     EXPECT_EQ(gripper_valve_energised(), grab);
-    EXPECT_TRUE(state.safe_state);
+    EXPECT_TRUE(state.safe_state());
   }
 }
 
@@ -526,10 +525,10 @@ TEST_F(RspLogicTest, AResetCommandClosesTheLockAndKeepsTheGripper) {
   run_for(logic, milliseconds(300), &unlock);
   ASSERT_TRUE(lock_valve_energised());
   OwnedCommand reset = command("reset", "grab");
-  const RspState state = cycle(logic, &reset);
+  const hub_msgs::RspState state = cycle(logic, &reset);
   EXPECT_FALSE(lock_valve_energised());
   EXPECT_FALSE(gripper_valve_energised()) << "a reset moves nothing but the lock, whatever its gripper says";
-  EXPECT_TRUE(state.safe_state);
+  EXPECT_TRUE(state.safe_state());
 }
 
 TEST_F(RspLogicTest, EnterSafeStateClosesTheLockAndLeavesTheGripper) {
@@ -553,11 +552,11 @@ TEST_F(RspLogicTest, AMissingChipIsReportedEverythingStaysLockedAndItRecovers) {
   RspLogic logic = make_logic();
   dock_reports(true, true, true);
   OwnedCommand unlock = command("unlock");
-  RspState state = cycle(logic, &unlock);
-  EXPECT_STREQ(state.tool, "undefined");
-  EXPECT_FALSE(state.unlock_allowed);
-  EXPECT_FALSE(state.pressure_ok);
-  EXPECT_FALSE(state.pressure_known) << "the chip is gone";
+  hub_msgs::RspState state = cycle(logic, &unlock);
+  EXPECT_EQ(state.tool(), "undefined");
+  EXPECT_FALSE(state.unlock_allowed());
+  EXPECT_FALSE(state.pressure_ok());
+  EXPECT_FALSE(state.pressure_known()) << "the chip is gone";
   EXPECT_TRUE(errors_.contains("output rsp.lock_valve not available:")) << errors_.at(0);
   EXPECT_TRUE(errors_.contains("input rsp.tool_id.smart_tool not available:"));
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault)

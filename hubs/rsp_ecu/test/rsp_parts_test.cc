@@ -115,7 +115,7 @@ TEST_F(UnlockInterlock, WithNoToolOnTheChangerAFreshDockStateAllowsOpening) {
 TEST(LockPositionTest, ClosedOnlyAfterAFullStrokeWithPressure) {
   ManualClock clock;
   LockPosition lock(milliseconds(200), clock.now().mono);
-  EXPECT_STREQ(lock.name(), "closing") << "at start the lock may still be closing";
+  EXPECT_EQ(lock.name(), "closing") << "at start the lock may still be closing";
   EXPECT_FALSE(lock.closed());
   clock.advance(milliseconds(199));
   lock.advance(clock.now().mono);
@@ -123,28 +123,28 @@ TEST(LockPositionTest, ClosedOnlyAfterAFullStrokeWithPressure) {
   clock.advance(milliseconds(1));
   lock.advance(clock.now().mono);
   EXPECT_TRUE(lock.closed());
-  EXPECT_STREQ(lock.name(), "closed");
+  EXPECT_EQ(lock.name(), "closed");
 
   lock.drive(true, clock.now().mono);
-  EXPECT_STREQ(lock.name(), "opening");
+  EXPECT_EQ(lock.name(), "opening");
   EXPECT_FALSE(lock.closed()) << "closed the moment the valve opens it no longer holds";
   clock.advance(milliseconds(200));
   lock.advance(clock.now().mono);
-  EXPECT_STREQ(lock.name(), "open");
+  EXPECT_EQ(lock.name(), "open");
 
   lock.drive(false, clock.now().mono);
   clock.advance(milliseconds(100));
   lock.pressure(false, clock.now().mono);
   clock.advance(milliseconds(500));
   lock.advance(clock.now().mono);
-  EXPECT_STREQ(lock.name(), "closing") << "without pressure the piston stays where it is";
+  EXPECT_EQ(lock.name(), "closing") << "without pressure the piston stays where it is";
   lock.pressure(true, clock.now().mono);
   clock.advance(milliseconds(150));
   lock.advance(clock.now().mono);
-  EXPECT_STREQ(lock.name(), "closing") << "the stroke starts over when pressure returns";
+  EXPECT_EQ(lock.name(), "closing") << "the stroke starts over when pressure returns";
   clock.advance(milliseconds(50));
   lock.advance(clock.now().mono);
-  EXPECT_STREQ(lock.name(), "closed");
+  EXPECT_EQ(lock.name(), "closed");
 }
 
 class GripperMonitorTest : public ::testing::Test {
@@ -161,19 +161,19 @@ class GripperMonitorTest : public ::testing::Test {
 
 TEST_F(GripperMonitorTest, ConfirmStatesFromTheTwoLines) {
   lines(false, false);
-  EXPECT_STREQ(monitor_.confirm_name(), "not_connected");
+  EXPECT_EQ(monitor_.confirm_name(), "not_connected");
   lines(true, true);
-  EXPECT_STREQ(monitor_.confirm_name(), "connected");
+  EXPECT_EQ(monitor_.confirm_name(), "connected");
   lines(true, false);
-  EXPECT_STREQ(monitor_.confirm_name(), "moving");
+  EXPECT_EQ(monitor_.confirm_name(), "moving");
   clock_.advance(milliseconds(500));
   lines(true, false);
-  EXPECT_STREQ(monitor_.confirm_name(), "moving") << "disagreeing for the confirm time is still allowed";
+  EXPECT_EQ(monitor_.confirm_name(), "moving") << "disagreeing for the confirm time is still allowed";
   clock_.advance(milliseconds(1));
   lines(true, false);
-  EXPECT_STREQ(monitor_.confirm_name(), "failed");
+  EXPECT_EQ(monitor_.confirm_name(), "failed");
   monitor_.observe(true, true, false, false, clock_.now().mono);
-  EXPECT_STREQ(monitor_.confirm_name(), "unknown") << "an unreadable line confirms nothing";
+  EXPECT_EQ(monitor_.confirm_name(), "unknown") << "an unreadable line confirms nothing";
 }
 
 TEST_F(GripperMonitorTest, AGripThatDoesNotArriveWithinTheConfirmTimeIsLatched) {

@@ -8,8 +8,6 @@
 #include <utility>
 #include <vector>
 
-#include <dds/dds.h>
-
 #include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/ports.h"
 
@@ -28,55 +26,38 @@ inline Expected<RspLogic> make_rsp_logic(const RspSettings& settings, const hal:
   return RspLogic::create(settings, std::move(*devices), dock, now);
 }
 
-// A command whose strings live as long as it does.
-struct OwnedCommand {
-  std::string target_type = "tool_changer";
-  std::string target_name = "rsp";
-  std::string action = "lock";
-  std::string gripper;
+// A command, owning its strings (the generated owning type).
+using OwnedCommand = hub_msgs::RspCommand;
 
-  // The wire struct, pointing into this object; valid while it is unchanged.
-  RspCommand wire() {
-    RspCommand c{};
-    c.target_type = target_type.data();
-    c.target_name = target_name.data();
-    c.action = action.data();
-    c.gripper = gripper.data();
-    return c;
-  }
-};
-
-inline OwnedCommand command(std::string action, std::string gripper = "") {
+inline OwnedCommand command(std::string_view action, std::string_view gripper = "") {
   OwnedCommand c;
-  c.action = std::move(action);
-  c.gripper = std::move(gripper);
+  c.set_target_type("tool_changer");
+  c.set_target_name("rsp");
+  c.set_action(action);
+  c.set_gripper(gripper);
   return c;
 }
 
 // Commands handed to a node in order, one drain at a time.
-class QueueSource final : public runtime::CommandSource<RspCommand> {
+class QueueSource final : public runtime::CommandSource<OwnedCommand::Wire> {
  public:
-  void push(const OwnedCommand& c) {
-    owned_.push_back(c);
-    wires_.push_back(owned_.back().wire());
-  }
-  Result<const RspCommand*> next() noexcept override {
-    if (wires_.empty()) return static_cast<const RspCommand*>(nullptr);
-    current_ = wires_.front();
-    wires_.pop_front();
-    return &current_;
+  void push(const OwnedCommand& c) { commands_.push_back(c); }
+  Result<const OwnedCommand::Wire*> next() noexcept override {
+    if (commands_.empty()) return static_cast<const OwnedCommand::Wire*>(nullptr);
+    current_ = commands_.front();
+    commands_.pop_front();
+    return &current_.wire();
   }
 
  private:
-  std::deque<OwnedCommand> owned_;  // deque: pushing does not move the strings wires point at
-  std::deque<RspCommand> wires_;
-  RspCommand current_{};
+  std::deque<OwnedCommand> commands_;
+  OwnedCommand current_;
 };
 
 // States go nowhere.
-class NullSink final : public runtime::StateSink<RspState> {
+class NullSink final : public runtime::StateSink<hub_msgs::RspState::Wire> {
  public:
-  Status publish(const RspState& /*state*/) noexcept override { return Status::ok(); }
+  Status publish(const hub_msgs::RspState::Wire& /*state*/) noexcept override { return Status::ok(); }
 };
 
 // The Dock ECU's State as the RSP node receives it through its `dock` subscription.
@@ -85,30 +66,25 @@ class DockFeed {
   explicit DockFeed(Duration timeout)
       : input_("dock", "/dock_ecu/dock/state", timeout, hub_msgs_msg_dds__DockState__desc, 0) {}
 
-  hub_api::RemoteState<dock_ecu::DockState>& input() noexcept { return input_; }
+  hub_api::RemoteState<hub_msgs::DockStateView>& input() noexcept { return input_; }
 
-  // A State listing `slots` (name, occupied) arrives at `now`. Strings and buffers are allocated
-  // the way Cyclone does when taking, since the RemoteState's sample frees them so.
+  // A State listing `slots` (name, occupied) arrives at `now`: built in `sent_`, whose storage
+  // the received sample then points into (its sequence is not the sample's to free).
   void arrive(const std::vector<std::pair<std::string, bool>>& slots, Time now) {
-    auto* state = static_cast<dock_ecu::DockState*>(input_.sample_data());
-    dds_sample_free(state, &hub_msgs_msg_dds__DockState__desc, DDS_FREE_CONTENTS);
-    std::memset(state, 0, sizeof *state);
-    state->name = dds_string_dup("dock");
-    auto* buffer = static_cast<hub_msgs_msg_dds__DockSlot_*>(
-        dds_alloc(sizeof(hub_msgs_msg_dds__DockSlot_) * slots.size()));
-    for (std::size_t i = 0; i < slots.size(); ++i) {
-      buffer[i].name = dds_string_dup(slots[i].first.c_str());
-      buffer[i].occupied = slots[i].second;
+    sent_ = hub_msgs::DockState();
+    sent_.set_name("dock");
+    for (const auto& [name, occupied] : slots) {
+      auto slot = sent_.slots().append();
+      slot->set_name(name);
+      slot->set_occupied(occupied);
     }
-    state->slots._buffer = buffer;
-    state->slots._length = static_cast<std::uint32_t>(slots.size());
-    state->slots._maximum = state->slots._length;
-    state->slots._release = true;
+    std::memcpy(input_.sample_data(), &sent_.wire(), sizeof sent_.wire());
     input_.note_arrival(now);
   }
 
  private:
-  hub_api::RemoteState<dock_ecu::DockState> input_;
+  hub_msgs::DockState sent_;  // declared first: outlives the sample that points into it
+  hub_api::RemoteState<hub_msgs::DockStateView> input_;
 };
 
 // The dock as host-sim.yaml starts it, with the smart tool's slot as given.

@@ -15,14 +15,6 @@ namespace ld = protocol::lift_drive;
 
 namespace {
 
-std::string_view view(const char* text) noexcept {
-  return text == nullptr ? std::string_view() : std::string_view(text);
-}
-
-char* wire(std::string_view literal_or_buffer) noexcept {
-  return const_cast<char*>(literal_or_buffer.data());  // NOLINT: the wire type wants char*; never written
-}
-
 // Within this of a named position (and in position) the lift is "at" it: the drive's own window.
 constexpr int kAtWindowTenthMm = 5;
 
@@ -72,11 +64,11 @@ int LiftLogic::position_index(std::string_view name) const noexcept {
 }
 
 bool LiftLogic::validate(const Command& command, runtime::Problem& problem) const noexcept {
-  if (view(command.action) != "move") return true;  // position means nothing to stop and reset
-  if (position_index(view(command.position)) >= 0) return true;
+  if (command.action() != "move") return true;  // position means nothing to stop and reset
+  if (position_index(command.position()) >= 0) return true;
   std::array<std::string_view, LiftSettings::kMaxPositions> names{};
   for (std::size_t i = 0; i < settings_.positions.size(); ++i) names[i] = settings_.positions[i].name;
-  problem.format("unknown position '{}' (expected one of: {})", view(command.position),
+  problem.format("unknown position '{}' (expected one of: {})", command.position(),
                  fmt::join(names.begin(),
                            names.begin() + static_cast<std::ptrdiff_t>(settings_.positions.size()), ", "));
   return false;
@@ -109,8 +101,8 @@ void LiftLogic::update(const Command* in_force, Time now) noexcept {
   target_ = -1;
   LiftIntent intent = intent_;
   intent.mode = LiftIntent::Mode::kStop;
-  if (in_force != nullptr && view(in_force->action) == "move") {
-    target_ = position_index(view(in_force->position));
+  if (in_force != nullptr && in_force->action() == "move") {
+    target_ = position_index(in_force->position());
     const bool may_move = online_ && !not_answering_.active() && !drive_fault_.active();
     if (target_ >= 0 && may_move) {
       intent.mode = LiftIntent::Mode::kMove;
@@ -139,27 +131,28 @@ void LiftLogic::report_reading(State& state, bool current) const noexcept {
   if (!current) {
     // The last reading is older than its validity: nothing of it is shown as current (the wire
     // contract's "unknown": "", 0, false). Above all `moving` is not true from it, and not "at".
-    state.at = wire("");
-    state.position_mm = 0.0F;
-    state.speed_mm_s = 0.0F;
-    state.enabled = false;
-    state.moving = false;
-    state.in_position = false;
-    state.fault = false;
-    state.fault_code = 0;
-    state.fault_text = wire("unknown");
+    state.set_at(std::string_view());
+    state.set_position_mm(0.0F);
+    state.set_speed_mm_s(0.0F);
+    state.set_enabled(false);
+    state.set_moving(false);
+    state.set_in_position(false);
+    state.set_fault(false);
+    state.set_fault_code(0);
+    state.set_fault_text("unknown");
     return;
   }
   const int at = position_at();
-  state.at = at >= 0 ? wire(settings_.positions[static_cast<std::size_t>(at)].name) : wire("");
-  state.position_mm = static_cast<float>(ld::to_mm(snap_.position_tenth_mm));
-  state.speed_mm_s = static_cast<float>(snap_.speed_mm_s);
-  state.enabled = (snap_.status_word & ld::status::kEnabled) != 0;
-  state.moving = (snap_.status_word & ld::status::kMoving) != 0;
-  state.in_position = (snap_.status_word & ld::status::kInPosition) != 0;
-  state.fault = (snap_.status_word & ld::status::kFault) != 0;
-  state.fault_code = snap_.fault_code;
-  state.fault_text = wire(fault_name(snap_.fault_code));
+  state.set_at(at >= 0 ? std::string_view(settings_.positions[static_cast<std::size_t>(at)].name)
+                       : std::string_view());
+  state.set_position_mm(static_cast<float>(ld::to_mm(snap_.position_tenth_mm)));
+  state.set_speed_mm_s(static_cast<float>(snap_.speed_mm_s));
+  state.set_enabled((snap_.status_word & ld::status::kEnabled) != 0);
+  state.set_moving((snap_.status_word & ld::status::kMoving) != 0);
+  state.set_in_position((snap_.status_word & ld::status::kInPosition) != 0);
+  state.set_fault((snap_.status_word & ld::status::kFault) != 0);
+  state.set_fault_code(snap_.fault_code);
+  state.set_fault_text(fault_name(snap_.fault_code));
 }
 
 void LiftLogic::report_unknown_motion(runtime::ErrorList& errors) const noexcept {
@@ -191,16 +184,17 @@ int LiftLogic::position_at() const noexcept {
 }
 
 void LiftLogic::report(State& state, runtime::ErrorList& errors, Time now) noexcept {
-  state.target = target_ >= 0 ? wire(settings_.positions[static_cast<std::size_t>(target_)].name) : wire("");
-  state.target_mm =
-      target_ >= 0
-          ? static_cast<float>(ld::to_mm(settings_.positions[static_cast<std::size_t>(target_)].tenth_mm))
-          : 0.0F;
+  state.set_target(target_ >= 0
+                       ? std::string_view(settings_.positions[static_cast<std::size_t>(target_)].name)
+                       : std::string_view());
+  state.set_target_mm(target_ >= 0 ? static_cast<float>(ld::to_mm(
+                                         settings_.positions[static_cast<std::size_t>(target_)].tenth_mm))
+                                   : 0.0F);
   // Judged again at the State's own time: a State rebuilt later than read_inputs() (a command
   // taking effect mid-cycle) must not show a reading that has gone stale meanwhile.
   const bool current = snap_.answered && now - snap_.read_at <= settings_.answer_within;
-  state.drive_online = current;
-  state.reading_age_ms = reading_age_ms(snap_.answered, snap_.read_at, now);
+  state.set_drive_online(current);
+  state.set_reading_age_ms(reading_age_ms(snap_.answered, snap_.read_at, now));
   report_reading(state, current);
 
   if (!snap_.answered) {

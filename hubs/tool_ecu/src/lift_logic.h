@@ -36,8 +36,8 @@ namespace hubrt::tool_ecu {
 
 class LiftLogic {
  public:
-  using Command = LiftCommand;
-  using State = LiftState;
+  using Command = hub_msgs::LiftCommandView;
+  using State = hub_msgs::LiftState;
   static constexpr std::string_view kType = "lift";
   static constexpr std::array<std::string_view, 3> kActions{"move", "stop", "reset"};
 

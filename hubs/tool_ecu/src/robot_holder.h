@@ -3,13 +3,14 @@
 // logic testable and independent of how that State arrives.
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 #include "hubrt/base/time.h"
 #include "hubrt/hub_api/remote_state.h"
 
-#include "rsp.h"
 #include "rsp_reflect.h"
+#include "rsp_typed.h"
 
 namespace hubrt::tool_ecu {
 
@@ -34,17 +35,17 @@ class RspToolHolder final : public ToolHolderView {
   static constexpr std::string_view kSmartTool = "smart_tool";
 
   // `rsp` must outlive this object (the hub's Subscriptions own it).
-  explicit RspToolHolder(hub_api::RemoteState<hub_msgs_msg_dds__RspState_>& rsp) : rsp_(&rsp) {}
+  explicit RspToolHolder(hub_api::RemoteState<hub_msgs::RspStateView>& rsp) : rsp_(&rsp) {}
 
   HolderReading read(Time now) noexcept override {
-    const hub_msgs_msg_dds__RspState_* state = rsp_->fresh(now);
-    if (state == nullptr) return HolderReading{false, false, rsp_->loss_reason(now)};
-    const std::string_view tool = state->tool == nullptr ? std::string_view() : std::string_view(state->tool);
+    const std::optional<hub_msgs::RspStateView> state = rsp_->fresh(now);
+    if (!state) return HolderReading{false, false, rsp_->loss_reason(now)};
+    const std::string_view tool = state->tool();
     return HolderReading{true, tool == kSmartTool, tool};
   }
 
  private:
-  hub_api::RemoteState<hub_msgs_msg_dds__RspState_>* rsp_;
+  hub_api::RemoteState<hub_msgs::RspStateView>* rsp_;
 };
 
 }  // namespace hubrt::tool_ecu

@@ -13,14 +13,6 @@ namespace st = protocol::smart_tool;
 
 namespace {
 
-std::string_view view(const char* text) noexcept {
-  return text == nullptr ? std::string_view() : std::string_view(text);
-}
-
-char* wire(std::string_view literal_or_buffer) noexcept {
-  return const_cast<char*>(literal_or_buffer.data());  // NOLINT: the wire type wants char*; never written
-}
-
 constexpr std::pair<std::uint16_t, std::string_view> kReasonNames[] = {
     {st::nok_reason::kTorqueLow, "torque low"},
     {st::nok_reason::kAngleLow, "angle low"},
@@ -89,13 +81,13 @@ SmartToolLogic::SmartToolLogic(SmartToolSettings settings, RunLines lines, ArmSe
 // --- commands ----------------------------------------------------------------------------------
 
 bool SmartToolLogic::validate(const Command& command, runtime::Problem& problem) const noexcept {
-  if (view(command.action) != "tighten") return true;  // run_id and program mean nothing to the others
-  if (command.run_id == 0) {
+  if (command.action() != "tighten") return true;  // run_id and program mean nothing to the others
+  if (command.run_id() == 0) {
     problem.format(
         "tighten needs a run_id from 1 up (it names the tightening; 0 is reserved for manual runs)");
     return false;
   }
-  const std::string_view program = view(command.program);
+  const std::string_view program = command.program();
   for (const ToolProgram& known : settings_.programs) {
     if (known.name == program) return true;
   }
@@ -247,16 +239,16 @@ SmartToolLogic::Want SmartToolLogic::manual() noexcept {
 SmartToolLogic::Want SmartToolLogic::decide(const Command* in_force, Time /*now*/) noexcept {
   blocked_by_.clear();
   if (in_force == nullptr) return {};  // the safe state: idle, buttons ignored
-  const std::string_view action = view(in_force->action);
+  const std::string_view action = in_force->action();
   if (action == "idle") return manual();
   if (action == "tighten") {
-    if (has_done_ && in_force->run_id == done_run_id_) return {};  // this tightening has ended
+    if (has_done_ && in_force->run_id() == done_run_id_) return {};  // this tightening has ended
     int program = -1;
     for (std::size_t i = 0; i < settings_.programs.size(); ++i) {
-      if (settings_.programs[i].name == view(in_force->program)) program = static_cast<int>(i);
+      if (settings_.programs[i].name == in_force->program()) program = static_cast<int>(i);
     }
     if (program < 0 || planner_blocked(true, program)) return {};
-    return Want{Kind::kTighten, in_force->run_id, program};
+    return Want{Kind::kTighten, in_force->run_id(), program};
   }
   if (action == "loosen") {
     if (planner_blocked(false, -1)) return {};
@@ -292,7 +284,7 @@ void SmartToolLogic::update(const Command* in_force, Time now) noexcept {
   }
 
   // Reset alarm goes to the controller once per reset, while nothing runs.
-  if (in_force == nullptr || view(in_force->action) != runtime::kResetAction) alarm_reset_pending_ = false;
+  if (in_force == nullptr || in_force->action() != runtime::kResetAction) alarm_reset_pending_ = false;
   if (alarm_reset_pending_ && controller_.online(now) && controller_.has_status() && !controller_.running() &&
       run_.phase == Phase::kIdle) {
     if ((controller_.status().flags & st::status_flag::kAlarm) == 0 || controller_.reset_alarm().is_ok()) {
@@ -561,21 +553,21 @@ void SmartToolLogic::enter_safe_state() noexcept {
 
 void SmartToolLogic::report_status(State& state, Time now) noexcept {
   const bool fresh = controller_.status_fresh(now);
-  state.status_fresh = fresh;
-  state.status_age_ms = reading_age_ms(controller_.has_status(), controller_.status_received_at(), now);
+  state.set_status_fresh(fresh);
+  state.set_status_age_ms(reading_age_ms(controller_.has_status(), controller_.status_received_at(), now));
   if (!fresh) {
     // A status older than its validity is not shown as current (the wire contract's "unknown").
     alarms_text_.assign("unknown");
     selected_text_.assign("unknown");
-    state.controller_alarms = wire(alarms_text_.c_str());
-    state.selected_program = wire(selected_text_.c_str());
-    state.torque_nm = 0.0F;
-    state.angle_deg = 0.0F;
+    state.set_controller_alarms(alarms_text_.view());
+    state.set_selected_program(selected_text_.view());
+    state.set_torque_nm(0.0F);
+    state.set_angle_deg(0.0F);
     return;
   }
   const st::Status& status = controller_.status();
   join_bits(alarms_text_, status.alarms, kAlarmNames);
-  state.controller_alarms = wire(alarms_text_.c_str());
+  state.set_controller_alarms(alarms_text_.view());
   const int selected = selected_program();
   if (selected >= 0) {
     selected_text_.assign(settings_.programs[static_cast<std::size_t>(selected)].name);
@@ -584,36 +576,38 @@ void SmartToolLogic::report_status(State& state, Time now) noexcept {
   } else {
     selected_text_.clear();
   }
-  state.selected_program = wire(selected_text_.c_str());
-  state.torque_nm = static_cast<float>(st::to_newton_metres(status.torque_cnm));
-  state.angle_deg = static_cast<float>(st::to_degrees(status.angle_ddeg));
+  state.set_selected_program(selected_text_.view());
+  state.set_torque_nm(static_cast<float>(st::to_newton_metres(status.torque_cnm)));
+  state.set_angle_deg(static_cast<float>(st::to_degrees(status.angle_ddeg)));
 }
 
 void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) noexcept {
-  state.output = wire(to_string(lines_.shown()));
-  state.activity = wire(activity());
-  state.active_run_id = run_.phase != Phase::kIdle && run_.what.kind == Kind::kTighten ? run_.what.run_id : 0;
-  state.blocked_by = wire(blocked_by_.c_str());
-  state.robot_holds_tool = holder_reading_.known && holder_reading_.holds;
-  state.arm_position = wire(to_string(arm_));
-  state.torque_reached = torque_input_;
-  state.summary_alarm = alarm_input_;
-  state.button_forward = pressed_forward_;
-  state.button_reverse = pressed_reverse_;
-  state.inputs_known = inputs_known_;
-  state.controller_online = controller_.online(now);
+  state.set_output(to_string(lines_.shown()));
+  state.set_activity(activity());
+  state.set_active_run_id(run_.phase != Phase::kIdle && run_.what.kind == Kind::kTighten ? run_.what.run_id
+                                                                                         : 0);
+  state.set_blocked_by(blocked_by_.view());
+  state.set_robot_holds_tool(holder_reading_.known && holder_reading_.holds);
+  state.set_arm_position(to_string(arm_));
+  state.set_torque_reached(torque_input_);
+  state.set_summary_alarm(alarm_input_);
+  state.set_button_forward(pressed_forward_);
+  state.set_button_reverse(pressed_reverse_);
+  state.set_inputs_known(inputs_known_);
+  state.set_controller_online(controller_.online(now));
   report_status(state, now);
 
-  SmartToolResult& result = state.last_result;
-  result.run_id = last_.run_id;
-  result.program =
-      last_.valid ? wire(settings_.programs[static_cast<std::size_t>(last_.program)].name) : wire("");
-  result.ok = last_.ok;
-  result.torque_nm = static_cast<float>(st::to_newton_metres(last_.torque_cnm));
-  result.angle_deg = static_cast<float>(st::to_degrees(last_.angle_ddeg));
+  const hub_msgs::SmartToolResultRef result = state.last_result();
+  result.set_run_id(last_.run_id);
+  result.set_program(last_.valid
+                         ? std::string_view(settings_.programs[static_cast<std::size_t>(last_.program)].name)
+                         : std::string_view());
+  result.set_ok(last_.ok);
+  result.set_torque_nm(static_cast<float>(st::to_newton_metres(last_.torque_cnm)));
+  result.set_angle_deg(static_cast<float>(st::to_degrees(last_.angle_ddeg)));
   join_bits(reasons_text_, last_.reasons, kReasonNames);
-  result.nok_reasons = wire(reasons_text_.c_str());
-  result.run_counter = last_.run_counter;
+  result.set_nok_reasons(reasons_text_.view());
+  result.set_run_counter(last_.run_counter);
 
   lines_.report(errors);
   arm_sensors_.report(errors);

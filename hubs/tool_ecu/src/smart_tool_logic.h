@@ -47,8 +47,8 @@ struct SmartToolDevices {
 
 class SmartToolLogic {
  public:
-  using Command = SmartToolCommand;
-  using State = SmartToolState;
+  using Command = hub_msgs::SmartToolCommandView;
+  using State = hub_msgs::SmartToolState;
   static constexpr std::string_view kType = "smart_tool";
   static constexpr std::array<std::string_view, 5> kActions{"idle", "tighten", "loosen", "inhibit", "reset"};
 

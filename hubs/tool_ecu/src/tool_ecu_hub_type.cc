@@ -102,7 +102,7 @@ class ToolEcuHubType final : public hub_api::HubType {
       if (node.type == SmartToolLogic::kType) {
         auto settings = parse_smart_tool_settings(node);
         if (!settings) return std::move(settings).error();
-        auto rsp = hub_api::Subscriptions::check<hub_msgs_msg_dds__RspState_>(config, settings->robot_state);
+        auto rsp = hub_api::Subscriptions::check<hub_msgs::RspStateView>(config, settings->robot_state);
         if (!rsp) return in_node(node, rsp.error());
         wired = hub_api::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
       } else {
@@ -134,7 +134,7 @@ class ToolEcuHubType final : public hub_api::HubType {
                                        hub_api::NodeWiring<ToolEcuTypes>& wiring, Time now) {
     auto settings = parse_smart_tool_settings(node);
     if (!settings) return std::move(settings).error();
-    auto rsp = context.subscriptions.get<hub_msgs_msg_dds__RspState_>(settings->robot_state);
+    auto rsp = context.subscriptions.get<hub_msgs::RspStateView>(settings->robot_state);
     if (!rsp) return in_node(node, rsp.error());
     auto devices = open_smart_tool_devices(*settings, context.board, context.backend, now);
     if (!devices) return in_node(node, devices.error());

@@ -1,31 +1,26 @@
-// The Tool ECU's wire types, registered for the typed DDS layer.
+// The Tool ECU's message types: the classes generated from tool_ecu.idl (firmware/msgs/README.md,
+// "Typed accessors"); tool_ecu_typed.h also registers the topics.
 #pragma once
 
 #include <string_view>
 
-#include "hubrt/dds/topic_type.h"
-
-#include "tool_ecu.h"
 #include "tool_ecu_reflect.h"
-
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SmartToolCommand_, hub_msgs_msg_dds__SmartToolCommand__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SmartToolState_, hub_msgs_msg_dds__SmartToolState__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__LiftCommand_, hub_msgs_msg_dds__LiftCommand__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__LiftState_, hub_msgs_msg_dds__LiftState__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__ToolEcuCommand_, hub_msgs_msg_dds__ToolEcuCommand__desc);
-HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__ToolEcuState_, hub_msgs_msg_dds__ToolEcuState__desc);
+#include "tool_ecu_typed.h"
 
 namespace hubrt::tool_ecu {
-using SmartToolCommand = hub_msgs_msg_dds__SmartToolCommand_;
-using SmartToolState = hub_msgs_msg_dds__SmartToolState_;
-using SmartToolResult = hub_msgs_msg_dds__SmartToolResult_;
-using LiftCommand = hub_msgs_msg_dds__LiftCommand_;
-using LiftState = hub_msgs_msg_dds__LiftState_;
+
+// The C structs on the wire, for tools and tests that talk DDS directly (logic uses the classes).
+using SmartToolCommand = hub_msgs::SmartToolCommand::Wire;
+using SmartToolState = hub_msgs::SmartToolState::Wire;
+using SmartToolResult = hub_msgs::SmartToolResult::Wire;
+using LiftCommand = hub_msgs::LiftCommand::Wire;
+using LiftState = hub_msgs::LiftState::Wire;
 
 // The hub layout's types (NodeWiring's HubTypes).
 struct ToolEcuTypes {
-  using Command = hub_msgs_msg_dds__ToolEcuCommand_;
-  using State = hub_msgs_msg_dds__ToolEcuState_;
+  using Command = hub_msgs::ToolEcuCommandView;
+  using State = hub_msgs::ToolEcuState;
   static constexpr std::string_view kType = "tool_ecu";
 };
+
 }  // namespace hubrt::tool_ecu

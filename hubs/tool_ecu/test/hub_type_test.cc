@@ -15,10 +15,10 @@ Expected<hal::BoardRequirements> requirements_of(const std::string& yaml) {
   return tool_ecu_hub_type().requirements(*config);
 }
 
-constexpr const char* kTool =
+constexpr char kTool[] =
     "  tool:\n    type: smart_tool\n    programs: {p: {number: 1, torque_nm: 5, angle_min_deg: 0, "
     "angle_max_deg: 90}}\n";
-constexpr const char* kRsp =
+constexpr char kRsp[] =
     "subscriptions:\n  rsp: {topic: /rsp_ecu/rsp/state, type: hub_msgs/msg/RspState, timeout_ms: 500}\n";
 
 TEST(ToolEcuHubType, NeedsTheRspSubscriptionForTheSmartToolInterlock) {

@@ -34,13 +34,13 @@ TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
   EXPECT_TRUE(errors_.empty()) << errors();
 
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at) == "home"; })) << errors();
-  EXPECT_NEAR(state_.position_mm, 380.0, 0.5);
+  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at()) == "home"; })) << errors();
+  EXPECT_NEAR(state_.position_mm(), 380.0, 0.5);
   const Order floating = move("float");
-  ASSERT_TRUE(step_until(&floating, [&] { return state_.moving; }));
-  EXPECT_FLOAT_EQ(state_.speed_mm_s, -100.0F) << "down";
-  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at) == "float"; }));
-  EXPECT_NEAR(state_.position_mm, 250.0, 0.5);
+  ASSERT_TRUE(step_until(&floating, [&] { return state_.moving(); }));
+  EXPECT_FLOAT_EQ(state_.speed_mm_s(), -100.0F) << "down";
+  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at()) == "float"; }));
+  EXPECT_NEAR(state_.position_mm(), 250.0, 0.5);
 }
 
 TEST_F(LiftLogicTest, TheDriveGetsItsSpeedAndWatchdogFromTheHubFile) {
@@ -53,34 +53,34 @@ TEST_F(LiftLogicTest, TheDriveGetsItsSpeedAndWatchdogFromTheHubFile) {
   EXPECT_EQ(registers.holding[ld::holding::kSpeed], 100);
   EXPECT_EQ(registers.holding[ld::holding::kWatchdogMs], 1000);
   EXPECT_EQ(registers.control_word(), ld::control::kStop) << "stop never switches the power stage on";
-  EXPECT_FALSE(state_.enabled);
+  EXPECT_FALSE(state_.enabled());
 }
 
 TEST_F(LiftLogicTest, StopHaltsAndHolds) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm > 50.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm() > 50.0F; }));
   const Order stop = action("stop");
   step(&stop);
   step(&stop);
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(stop, 5);
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_STREQ(state_.target, "");
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_EQ(state_.target(), "");
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
 }
 
 TEST_F(LiftLogicTest, NoCommandInForceStopsTheLift) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm > 50.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.position_mm() > 50.0F; }));
   step(nullptr);
   step(nullptr);
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   for (int i = 0; i < 5; ++i) step(nullptr);
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
-  EXPECT_FALSE(state_.moving);
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
+  EXPECT_FALSE(state_.moving());
 }
 
 TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
@@ -97,7 +97,7 @@ TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
   ASSERT_TRUE(script_.complete(clock_.now().mono));
   EXPECT_NE(drive_control_word() & ld::control::kStop, 0);
 
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   EXPECT_EQ(drive_control_word() & ld::control::kStop, 0);
   // "Stop" is the device's write-on-close: the last word even with a move request in flight.
   EXPECT_EQ(script_.write_on_close(),
@@ -114,26 +114,26 @@ TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
   drive_.inject_overcurrent(clock_.now().mono);
   step(&home);
-  EXPECT_TRUE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 1);
-  EXPECT_STREQ(state_.fault_text, "overcurrent");
-  EXPECT_FALSE(state_.enabled);
+  EXPECT_TRUE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 1);
+  EXPECT_EQ(state_.fault_text(), "overcurrent");
+  EXPECT_FALSE(state_.enabled());
   EXPECT_NE(errors().find("lift drive fault 1 (overcurrent); lift stopped; send reset to clear"),
             std::string::npos)
       << errors();
   EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kFault) << "the node's lifecycle: fault";
   const float held = state_.position_mm;
   steps(home, 5);  // the planner keeps asking: nothing moves
-  EXPECT_FLOAT_EQ(state_.position_mm, held);
+  EXPECT_FLOAT_EQ(state_.position_mm(), held);
 
   reset_command();
   ASSERT_TRUE(step_until(
-      &home, [&] { return !state_.fault; }, 10))
+      &home, [&] { return !state_.fault(); }, 10))
       << "the reset pulse reached the drive";
   EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kOk);
   // The reset command took effect; the planner's next move is fresh: the drive needs an enable edge.
   const Order floating = move("float");
-  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at) == "float"; })) << errors();
+  ASSERT_TRUE(step_until(&floating, [&] { return std::string(state_.at()) == "float"; })) << errors();
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
@@ -147,9 +147,9 @@ TEST_F(LiftLogicTest, AJammedLoadTripsAFollowingErrorAndRecoversAfterReset) {
   EXPECT_STREQ(state_.fault_text, "following error");
   drive_.set_blocked(false, clock_.now().mono);
   steps(home, 3);
-  EXPECT_TRUE(state_.fault) << "latched in the drive until reset";
+  EXPECT_TRUE(state_.fault()) << "latched in the drive until reset";
   reset_command();
-  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at) == "home"; })) << errors();
+  ASSERT_TRUE(step_until(&home, [&] { return std::string(state_.at()) == "home"; })) << errors();
 }
 
 TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
@@ -158,14 +158,14 @@ TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
   ASSERT_TRUE(step_until(&work, [&] { return state_.moving; }));
   drive_.set_overtemperature(true, clock_.now().mono);
   ASSERT_TRUE(step_until(
-      &work, [&] { return state_.fault; }, 5));
+      &work, [&] { return state_.fault(); }, 5));
   reset_command();
   steps(work, 3);
-  EXPECT_EQ(state_.fault_code, 3) << "refused while still hot";
+  EXPECT_EQ(state_.fault_code(), 3) << "refused while still hot";
   EXPECT_NE(errors().find("lift drive fault 3 (overtemperature)"), std::string::npos) << errors();
   drive_.set_overtemperature(false, clock_.now().mono);
   reset_command();
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
 }
 
 TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
@@ -184,7 +184,7 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
 
   answering_ = true;
   step(&home);
-  EXPECT_TRUE(state_.drive_online);
+  EXPECT_TRUE(state_.drive_online());
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
       << errors();
   // That request only read the drive (nothing is written without a current reading); "stop" goes
@@ -193,11 +193,11 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   step(&home);
   const float held = state_.position_mm;
   steps(home, 3);
-  EXPECT_FLOAT_EQ(state_.position_mm, held) << "latched: no motion until reset";
+  EXPECT_FLOAT_EQ(state_.position_mm(), held) << "latched: no motion until reset";
   reset_command();
   EXPECT_TRUE(errors_.empty()) << errors();
   const Order work = move("work");
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
 }
 
 // The drive stops answering mid-move. Its last reading (moving up at 100 mm/s) holds for
@@ -211,28 +211,28 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   step(&home);
   ASSERT_GT(logic_->snapshot().failures_in_a_row, 0u);
   const Time last_read = logic_->snapshot().read_at;
-  const float last_seen_mm = state_.position_mm;
+  const float last_seen_mm = state_.position_mm();
 
   clock_.set(last_read + milliseconds(500));  // the reading's last valid moment
   cycle(&home);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 500u);
-  EXPECT_TRUE(state_.moving) << "still within its validity";
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 500u);
+  EXPECT_TRUE(state_.moving()) << "still within its validity";
 
   clock_.set(last_read + milliseconds(501));
   cycle(&home);
-  EXPECT_FALSE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 501u);
-  EXPECT_FALSE(state_.moving) << "never true from a stale reading";
-  EXPECT_FALSE(state_.enabled);
-  EXPECT_FALSE(state_.in_position);
-  EXPECT_FALSE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 0);
-  EXPECT_STREQ(state_.fault_text, "unknown");
-  EXPECT_STREQ(state_.at, "");
-  EXPECT_EQ(state_.position_mm, 0.0F);
-  EXPECT_EQ(state_.speed_mm_s, 0.0F);
-  EXPECT_STREQ(state_.target, "home") << "the command's target is the hub's own, not a reading";
+  EXPECT_FALSE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 501u);
+  EXPECT_FALSE(state_.moving()) << "never true from a stale reading";
+  EXPECT_FALSE(state_.enabled());
+  EXPECT_FALSE(state_.in_position());
+  EXPECT_FALSE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 0);
+  EXPECT_EQ(state_.fault_text(), "unknown");
+  EXPECT_EQ(state_.at(), "");
+  EXPECT_EQ(state_.position_mm(), 0.0F);
+  EXPECT_EQ(state_.speed_mm_s(), 0.0F);
+  EXPECT_EQ(state_.target(), "home") << "the command's target is the hub's own, not a reading";
   EXPECT_EQ(errors().find("stopped"), std::string::npos) << "nobody knows it stopped: " << errors();
   EXPECT_NE(errors().find(fmt::format("lift motion unknown: last seen at {:.1f} mm, moving; the drive's own "
                                       "watchdog stops it 1000 ms after the last request it got",
@@ -292,18 +292,18 @@ TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
 TEST_F(LiftLogicTest, BadMoveCommandsAreRejectedWithTheirReason) {
   start();
   runtime::Problem problem;
-  LiftCommand command{};
+  hub_msgs::LiftCommand command;
   const Order up = move("attic");
-  command = up.wire();
+  command = up.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(), "unknown position 'attic' (expected one of: home, float, work)");
   const Order empty = move("");
-  command = empty.wire();
+  command = empty.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(), "unknown position '' (expected one of: home, float, work)");
   Order stop = action("stop");
   stop.position = "attic";
-  command = stop.wire();
+  command = stop.message();
   EXPECT_TRUE(logic_->validate(command, problem)) << "stop ignores the position";
 }
 

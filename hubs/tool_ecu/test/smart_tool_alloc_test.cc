@@ -18,29 +18,29 @@ namespace {
 
 using hubrt::testing::AllocationScope;
 using std::chrono::milliseconds;
-using RspState = hub_msgs_msg_dds__RspState_;
+using Wire = hub_msgs::SmartToolCommand::Wire;
 
 // Hands the node the planner's command of the moment, every cycle (as the planner repeats it).
-class RepeatingSource final : public runtime::CommandSource<SmartToolCommand> {
+class RepeatingSource final : public runtime::CommandSource<Wire> {
  public:
-  void set(const SmartToolCommand& command) { command_ = command; }
-  Result<const SmartToolCommand*> next() noexcept override {
+  void set(const hub_msgs::SmartToolCommand& command) { command_ = command; }
+  Result<const Wire*> next() noexcept override {
     if (given_) {
       given_ = false;
-      return static_cast<const SmartToolCommand*>(nullptr);
+      return static_cast<const Wire*>(nullptr);
     }
     given_ = true;
-    return &command_;
+    return &command_.wire();
   }
 
  private:
-  SmartToolCommand command_{};
+  hub_msgs::SmartToolCommand command_;
   bool given_ = false;
 };
 
-class CountingSink final : public runtime::StateSink<SmartToolState> {
+class CountingSink final : public runtime::StateSink<hub_msgs::SmartToolState::Wire> {
  public:
-  Status publish(const SmartToolState& /*state*/) noexcept override {
+  Status publish(const hub_msgs::SmartToolState::Wire& /*state*/) noexcept override {
     ++published;
     return Status::ok();
   }
@@ -57,9 +57,9 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   ASSERT_TRUE(settings) << settings.error().message;
   auto fake = hal::fake::FakeBackend::create(*board, clock);
   ASSERT_TRUE(fake) << fake.error().message;
-  hub_api::RemoteState<RspState> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                     hub_msgs_msg_dds__RspState__desc, 0};
-  static_cast<RspState*>(rsp.sample_data())->tool = dds_string_dup("smart_tool");
+  hub_api::RemoteState<hub_msgs::RspStateView> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                                    hub_msgs_msg_dds__RspState__desc, 0};
+  hub_msgs::RspStateRef(*static_cast<hub_msgs::RspState::Wire*>(rsp.sample_data())).set_tool("smart_tool");
   auto devices = open_smart_tool_devices(*settings, *board, **fake, clock.now().mono);
   ASSERT_TRUE(devices) << devices.error().message;
   auto logic = SmartToolLogic::create(*settings, std::move(*devices), std::make_unique<RspToolHolder>(rsp),
@@ -69,16 +69,16 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   CountingSink sink;
   runtime::NodeOptions options;
   options.name = "tool";
-  runtime::Node<SmartToolLogic> node(options, std::move(*logic), source, sink,
-                                     hub_api::message_ops<SmartToolCommand>());
+  runtime::Node<SmartToolLogic> node(options, std::move(*logic), source, sink, hub_api::message_ops<Wire>());
   hal::fake::SmartToolSimulator* tool = (*fake)->smart_tool("tool_bus");
   (*fake)->input("tool.arm.home")->set(false);
 
-  std::string action = "tighten";
-  std::string program = "ladder_frame_bolt";
-  std::string type = "smart_tool";
-  std::string name = "tool";
-  SmartToolCommand command{type.data(), name.data(), action.data(), 1, program.data()};
+  hub_msgs::SmartToolCommand command;
+  command.set_target_type("smart_tool");
+  command.set_target_name("tool");
+  command.set_action("tighten");
+  command.set_run_id(1);
+  command.set_program("ladder_frame_bolt");
   const auto run = [&](int cycles) {
     for (int i = 0; i < cycles; ++i) {
       clock.advance(milliseconds(50));
@@ -94,32 +94,32 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   tool->power_off();
   run(10);
   tool->power_on();
-  action = "reset";
+  command.set_action("reset");
   run(5);
 
   AllocationScope scope;
   for (std::uint32_t bolt = 2; bolt < 6; ++bolt) {
-    action = "tighten";
-    command.run_id = bolt;
+    command.set_action("tighten");
+    command.set_run_id(bolt);
     run(bolt % 2 == 0 ? 30 : 5);  // odd bolts are interrupted by the next one
   }
   const int runs_after_reboot = tool->snapshot().run_counter;  // counts from 0 after the reboot
-  action = "loosen";
+  command.set_action("loosen");
   run(10);
-  action = "idle";
+  command.set_action("idle");
   run(5);
   tool->power_off();
   run(10);
   tool->power_on();
   run(5);
-  action = "reset";
+  command.set_action("reset");
   run(5);
   const std::size_t allocations = scope.count();
 
   EXPECT_EQ(allocations, 0u);
   // It really ran: runs happened and the State says the last one.
   EXPECT_GE(runs_after_reboot, 4);
-  EXPECT_EQ(node.state().last_result.run_id, 5u);
+  EXPECT_EQ(node.state().last_result().run_id(), 5u);
   EXPECT_GT(sink.published, 100u);
 }
 

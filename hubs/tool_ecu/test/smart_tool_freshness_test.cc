@@ -15,12 +15,12 @@ using namespace testing;  // NOLINT(google-build-using-namespace): the fixture a
 constexpr std::uint32_t kValidityMs = 350;
 
 // The State's controller values are unknown, as the wire contract spells it.
-void expect_unknown(const SmartToolState& state) {
-  EXPECT_FALSE(state.status_fresh);
-  EXPECT_STREQ(state.controller_alarms, "unknown");
-  EXPECT_STREQ(state.selected_program, "unknown");
-  EXPECT_EQ(state.torque_nm, 0.0F);
-  EXPECT_EQ(state.angle_deg, 0.0F);
+void expect_unknown(const hub_msgs::SmartToolState& state) {
+  EXPECT_FALSE(state.status_fresh());
+  EXPECT_EQ(state.controller_alarms(), "unknown");
+  EXPECT_EQ(state.selected_program(), "unknown");
+  EXPECT_EQ(state.torque_nm(), 0.0F);
+  EXPECT_EQ(state.angle_deg(), 0.0F);
 }
 
 TEST_F(SmartToolLogicTest, AStatusOlderThanItsValidityIsUnknownAndFreshOneBringsTheValuesBack) {
@@ -29,36 +29,36 @@ TEST_F(SmartToolLogicTest, AStatusOlderThanItsValidityIsUnknownAndFreshOneBrings
   ASSERT_TRUE(tighten_to_the_end(bolt1)) << errors();
   const Order idle = action("idle");
   cycle(&idle);
-  ASSERT_TRUE(state_.status_fresh);
-  EXPECT_LE(state_.status_age_ms, 100u);
-  EXPECT_STREQ(state_.selected_program, "ladder_frame_bolt");
-  EXPECT_STREQ(state_.controller_alarms, "");
-  EXPECT_GT(state_.torque_nm, 5.0F) << "the final torque of the run";
+  ASSERT_TRUE(state_.status_fresh());
+  EXPECT_LE(state_.status_age_ms(), 100u);
+  EXPECT_EQ(state_.selected_program(), "ladder_frame_bolt");
+  EXPECT_EQ(state_.controller_alarms(), "");
+  EXPECT_GT(state_.torque_nm(), 5.0F) << "the final torque of the run";
 
   tool_->power_off();
   bool went_stale = false;
   for (int i = 0; i < 12 && !went_stale; ++i) {  // 600 ms: well past the 350 ms validity
     cycle(&idle);
     // The flag and the age agree on every cycle, and nothing stale is shown as current.
-    EXPECT_EQ(state_.status_fresh, state_.status_age_ms <= kValidityMs) << state_.status_age_ms;
-    went_stale = !state_.status_fresh;
+    EXPECT_EQ(state_.status_fresh(), state_.status_age_ms() <= kValidityMs) << state_.status_age_ms();
+    went_stale = !state_.status_fresh();
   }
   ASSERT_TRUE(went_stale) << "the status stopped arriving";
-  EXPECT_GT(state_.status_age_ms, kValidityMs);
-  EXPECT_LE(state_.status_age_ms, kValidityMs + 50) << "stale from the first cycle past the validity";
+  EXPECT_GT(state_.status_age_ms(), kValidityMs);
+  EXPECT_LE(state_.status_age_ms(), kValidityMs + 50) << "stale from the first cycle past the validity";
   expect_unknown(state_);
-  EXPECT_FALSE(state_.controller_online);
-  const std::uint32_t age = state_.status_age_ms;
+  EXPECT_FALSE(state_.controller_online());
+  const std::uint32_t age = state_.status_age_ms();
   cycles(idle, 4);
-  EXPECT_EQ(state_.status_age_ms, age + 200) << "the age keeps growing with the time passed in";
+  EXPECT_EQ(state_.status_age_ms(), age + 200) << "the age keeps growing with the time passed in";
   expect_unknown(state_);
 
   tool_->power_on();  // it reboots: no program selected, no alarm, torque 0
-  ASSERT_TRUE(cycle_until(&idle, [&] { return state_.status_fresh; }));
-  EXPECT_LE(state_.status_age_ms, kValidityMs);
-  EXPECT_STREQ(state_.controller_alarms, "");
-  EXPECT_STREQ(state_.selected_program, "") << "the rebooted controller has none";
-  EXPECT_EQ(state_.torque_nm, 0.0F);
+  ASSERT_TRUE(cycle_until(&idle, [&] { return state_.status_fresh(); }));
+  EXPECT_LE(state_.status_age_ms(), kValidityMs);
+  EXPECT_EQ(state_.controller_alarms(), "");
+  EXPECT_EQ(state_.selected_program(), "") << "the rebooted controller has none";
+  EXPECT_EQ(state_.torque_nm(), 0.0F);
 }
 
 TEST_F(SmartToolLogicTest, BeforeTheFirstStatusItsAgeSaysNeverAndItsValuesAreUnknown) {
@@ -69,32 +69,32 @@ TEST_F(SmartToolLogicTest, BeforeTheFirstStatusItsAgeSaysNeverAndItsValuesAreUnk
   ASSERT_TRUE(logic);
   logic_.emplace(std::move(*logic));
   cycles(nullptr, 3);
-  EXPECT_EQ(state_.status_age_ms, kNeverRead);
+  EXPECT_EQ(state_.status_age_ms(), kNeverRead);
   expect_unknown(state_);
 }
 
 TEST_F(SmartToolLogicTest, AnInputThatCannotBeReadThisCycleIsFlaggedUnknown) {
   make_ready();
   cycle(nullptr);
-  EXPECT_TRUE(state_.inputs_known);
+  EXPECT_TRUE(state_.inputs_known());
   fake_->input("tool.torque_reached")->set(true);
   cycles(nullptr, 2);  // past the debounce
-  ASSERT_TRUE(state_.torque_reached);
+  ASSERT_TRUE(state_.torque_reached());
 
   auto wiring = fake_->wiring("tool.torque_reached");
   ASSERT_TRUE(wiring.is_ok());
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, true).is_ok());
   cycle(nullptr);
-  EXPECT_FALSE(state_.inputs_known) << "the same cycle the read failed";
-  EXPECT_FALSE(state_.torque_reached) << "not the last good reading";
+  EXPECT_FALSE(state_.inputs_known()) << "the same cycle the read failed";
+  EXPECT_FALSE(state_.torque_reached()) << "not the last good reading";
   EXPECT_NE(errors().find("input tool.torque_reached failed to read: i/o error"), std::string::npos)
       << errors();
 
   ASSERT_TRUE(wiring.value().chip->fail_reads(wiring.value().line, false).is_ok());
   cycle(nullptr);
-  EXPECT_TRUE(state_.inputs_known);
+  EXPECT_TRUE(state_.inputs_known());
   cycles(nullptr, 2);  // past the debounce, should the debouncer start over
-  EXPECT_TRUE(state_.torque_reached) << "a good read brings the value back";
+  EXPECT_TRUE(state_.torque_reached()) << "a good read brings the value back";
 }
 
 TEST(ReadingAge, SaturatesInsteadOfWrappingAndNeverGoesNegative) {

@@ -18,12 +18,12 @@ TEST_F(SmartToolLogicTest, ATighteningSelectsItsProgramRunsForwardAndReportsItsR
   make_ready();
   const Order bolt7 = tighten(7);
   cycle(&bolt7);
-  EXPECT_EQ(std::string(state_.activity), "tightening");
-  EXPECT_EQ(state_.active_run_id, 7u);
+  EXPECT_EQ(std::string(state_.activity()), "tightening");
+  EXPECT_EQ(state_.active_run_id(), 7u);
   ASSERT_TRUE(cycle_until(&bolt7, [&] { return output() == "forward"; }));
   EXPECT_TRUE(line("tool.run_forward"));
   EXPECT_FALSE(line("tool.run_reverse"));
-  EXPECT_EQ(std::string(state_.selected_program), "ladder_frame_bolt");
+  EXPECT_EQ(std::string(state_.selected_program()), "ladder_frame_bolt");
   ASSERT_TRUE(tool_->snapshot().program.has_value());
   EXPECT_EQ(*tool_->snapshot().program, settings_.programs[0].program)
       << "the hub file's torque and angle window";
@@ -31,15 +31,15 @@ TEST_F(SmartToolLogicTest, ATighteningSelectsItsProgramRunsForwardAndReportsItsR
 
   ASSERT_TRUE(tighten_to_the_end(bolt7)) << errors();
   EXPECT_FALSE(line("tool.run_forward"));
-  EXPECT_EQ(state_.active_run_id, 0u);
-  const SmartToolResult& result = state_.last_result;
-  EXPECT_TRUE(result.ok) << result.nok_reasons;
-  EXPECT_STREQ(result.program, "ladder_frame_bolt");
-  EXPECT_NEAR(result.torque_nm, 10.0, 0.01);
-  EXPECT_GE(result.angle_deg, 150.0F);
-  EXPECT_LE(result.angle_deg, 200.0F);
-  EXPECT_STREQ(result.nok_reasons, "");
-  EXPECT_EQ(result.run_counter, 1);
+  EXPECT_EQ(state_.active_run_id(), 0u);
+  const hub_msgs::SmartToolResultView result = state_.last_result();
+  EXPECT_TRUE(result.ok()) << result.nok_reasons();
+  EXPECT_EQ(result.program(), "ladder_frame_bolt");
+  EXPECT_NEAR(result.torque_nm(), 10.0, 0.01);
+  EXPECT_GE(result.angle_deg(), 150.0F);
+  EXPECT_LE(result.angle_deg(), 200.0F);
+  EXPECT_EQ(result.nok_reasons(), "");
+  EXPECT_EQ(result.run_counter(), 1);
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
@@ -52,15 +52,15 @@ TEST_F(SmartToolLogicTest, RepeatingTheSameTightenIsOneTighteningAndANewRunIdIsT
   cycles(bolt7, 40);
   EXPECT_EQ(tool_->snapshot().run_counter, 1) << "no second run for the same run_id";
   EXPECT_EQ(output(), "idle");
-  EXPECT_EQ(state_.last_result.run_id, 7u);
+  EXPECT_EQ(state_.last_result().run_id(), 7u);
   EXPECT_FALSE(fake_->history("tool.run_forward").empty());
   const std::size_t edges = fake_->history("tool.run_forward").size();
 
   const Order bolt8 = tighten(8);
   ASSERT_TRUE(tighten_to_the_end(bolt8));
   EXPECT_EQ(tool_->snapshot().run_counter, 2);
-  EXPECT_EQ(state_.last_result.run_id, 8u);
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_EQ(state_.last_result().run_id(), 8u);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_EQ(fake_->history("tool.run_forward").size(), edges + 2) << "one more on/off of the run line";
 }
 
@@ -71,12 +71,12 @@ TEST_F(SmartToolLogicTest, ANewRunIdDuringARunStopsItNokAndStartsTheNext) {
   const Order bolt8 = tighten(8);
   cycle(&bolt8);
   EXPECT_EQ(output(), "idle") << "the run lines drop at once";
-  EXPECT_EQ(std::string(state_.activity), "stopping");
-  ASSERT_TRUE(cycle_until(&bolt8, [&] { return state_.last_result.run_id == 7; }));
-  EXPECT_FALSE(state_.last_result.ok);
-  EXPECT_STREQ(state_.last_result.nok_reasons, "torque low, stopped by command");
+  EXPECT_EQ(std::string(state_.activity()), "stopping");
+  ASSERT_TRUE(cycle_until(&bolt8, [&] { return state_.last_result().run_id() == 7; }));
+  EXPECT_FALSE(state_.last_result().ok());
+  EXPECT_EQ(state_.last_result().nok_reasons(), "torque low, stopped by command");
   ASSERT_TRUE(tighten_to_the_end(bolt8));
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_EQ(tool_->snapshot().run_counter, 2);
 }
 
@@ -85,9 +85,9 @@ TEST_F(SmartToolLogicTest, ASlippingJointEndsNok) {
   tool_->set_joint_slip(true);
   const Order bolt3 = tighten(3);
   ASSERT_TRUE(tighten_to_the_end(bolt3));
-  EXPECT_FALSE(state_.last_result.ok);
-  EXPECT_STREQ(state_.last_result.nok_reasons, "torque low, angle high");
-  EXPECT_LT(state_.last_result.torque_nm, 10.0F);
+  EXPECT_FALSE(state_.last_result().ok());
+  EXPECT_EQ(state_.last_result().nok_reasons(), "torque low, angle high");
+  EXPECT_LT(state_.last_result().torque_nm(), 10.0F);
 }
 
 TEST_F(SmartToolLogicTest, ALoosenRunsInReverseWhileInForce) {
@@ -102,9 +102,9 @@ TEST_F(SmartToolLogicTest, ALoosenRunsInReverseWhileInForce) {
   const Order idle = action("idle");
   cycle(&idle);
   EXPECT_EQ(output(), "idle");
-  ASSERT_TRUE(cycle_until(&idle, [&] { return std::string(state_.activity) == "idle"; }));
+  ASSERT_TRUE(cycle_until(&idle, [&] { return std::string(state_.activity()) == "idle"; }));
   EXPECT_FALSE(tool_->snapshot().running);
-  EXPECT_FALSE(state_.last_result.program[0] != '\0') << "a reverse run has no result";
+  EXPECT_TRUE(state_.last_result().program().empty()) << "a reverse run has no result";
 }
 
 TEST_F(SmartToolLogicTest, TheDirectionNeverChangesWhileTheRunEnableIsOn) {
@@ -142,20 +142,20 @@ TEST_F(SmartToolLogicTest, TheToolRunsOnlyWhileTheRobotHoldsIt) {
   EXPECT_EQ(output(), "idle");
   EXPECT_FALSE(tool_->snapshot().running);
   EXPECT_EQ(blocked_by(), "the robot does not hold the smart tool (RSP ECU reports tool 'none')");
-  EXPECT_FALSE(state_.robot_holds_tool);
+  EXPECT_FALSE(state_.robot_holds_tool());
   set_tool_on_robot("filter_tool");
   cycles(bolt1, 3);
   EXPECT_EQ(output(), "idle");
   set_tool_on_robot("smart_tool");
   ASSERT_TRUE(cycle_until(&bolt1, [&] { return output() == "forward"; }));
-  EXPECT_TRUE(state_.robot_holds_tool);
+  EXPECT_TRUE(state_.robot_holds_tool());
   EXPECT_EQ(blocked_by(), "");
   // Letting go of the tool mid-run stops it: the tightening ends NOK and is not repeated.
   set_tool_on_robot("none");
   cycle(&bolt1);
   EXPECT_EQ(output(), "idle");
-  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result.run_id == 1; }));
-  EXPECT_FALSE(state_.last_result.ok);
+  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result().run_id() == 1; }));
+  EXPECT_FALSE(state_.last_result().ok());
   set_tool_on_robot("smart_tool");
   cycles(bolt1, 10);
   EXPECT_EQ(tool_->snapshot().run_counter, 1);
@@ -168,7 +168,7 @@ TEST_F(SmartToolLogicTest, ALostRspStateCountsAsNotAllowed) {
   ASSERT_TRUE(cycle_until(&bolt1, [&] { return output() == "forward"; })) << "fresh for another 500 ms";
   cycles(bolt1, 10);  // 500 ms later: lost
   EXPECT_EQ(output(), "idle");
-  EXPECT_FALSE(state_.robot_holds_tool);
+  EXPECT_FALSE(state_.robot_holds_tool());
   EXPECT_EQ(blocked_by().rfind(
                 "robot's grip on the tool unknown: input 'rsp' (/rsp_ecu/rsp/state): no State for", 0),
             0u)
@@ -176,19 +176,19 @@ TEST_F(SmartToolLogicTest, ALostRspStateCountsAsNotAllowed) {
   EXPECT_NE(errors().find("robot state lost: input 'rsp' (/rsp_ecu/rsp/state): no State for"),
             std::string::npos)
       << errors();
-  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result.run_id == 1; }));
-  EXPECT_FALSE(state_.last_result.ok);
+  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result().run_id() == 1; }));
+  EXPECT_FALSE(state_.last_result().ok());
 
   rsp_alive_ = true;
   const Order bolt2 = tighten(2);
   ASSERT_TRUE(tighten_to_the_end(bolt2));
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
 TEST_F(SmartToolLogicTest, ANeverReceivedRspStateCountsAsNotAllowed) {
-  hub_api::RemoteState<RspState> silent{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                        hub_msgs_msg_dds__RspState__desc, 0};
+  hub_api::RemoteState<hub_msgs::RspStateView> silent{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                                       hub_msgs_msg_dds__RspState__desc, 0};
   logic_.reset();  // its lines and bus go first: a line is opened by one owner at a time
   auto logic = make_smart_tool_logic(settings_, board_, *fake_, std::make_unique<RspToolHolder>(silent),
                                      clock_.now().mono);
@@ -207,27 +207,27 @@ TEST_F(SmartToolLogicTest, TheToolRunsOnlyWithTheArmInOperatingPosition) {
   make_ready();
   const Order bolt1 = tighten(1);
   struct Case {
-    const char* signal;
-    const char* expected;
+    std::string_view signal;
+    std::string_view expected;
   };
   for (const Case& c : {Case{"tool.arm.home", "home"}, Case{"tool.arm.pre_home", "pre_home"},
                         Case{"tool.arm.out_of_range", "out_of_range"}}) {
     fake_->input(c.signal)->set(true);
     cycles(bolt1, 3);
-    EXPECT_EQ(std::string(state_.arm_position), c.expected);
+    EXPECT_EQ(std::string(state_.arm_position()), c.expected);
     EXPECT_EQ(output(), "idle") << c.signal;
-    EXPECT_EQ(blocked_by(), std::string("arm not in operating position (") + c.expected + ")");
+    EXPECT_EQ(blocked_by(), std::string("arm not in operating position (") + std::string(c.expected) + ")");
     fake_->input(c.signal)->set(false);
   }
   fake_->input("tool.arm.home")->set(true);
   fake_->input("tool.arm.pre_home")->set(true);
   cycles(bolt1, 3);
-  EXPECT_EQ(std::string(state_.arm_position), "unclear");
+  EXPECT_EQ(std::string(state_.arm_position()), "unclear");
   EXPECT_EQ(output(), "idle");
   fake_->input("tool.arm.home")->set(false);
   fake_->input("tool.arm.pre_home")->set(false);
   ASSERT_TRUE(cycle_until(&bolt1, [&] { return output() == "forward"; }));
-  EXPECT_EQ(std::string(state_.arm_position), "operating");
+  EXPECT_EQ(std::string(state_.arm_position()), "operating");
   EXPECT_EQ(tool_->snapshot().run_counter, 1) << "nothing ran while blocked";
 }
 
@@ -239,8 +239,8 @@ TEST_F(SmartToolLogicTest, TorqueReachedStopsAForwardRunButNotALoosen) {
   fake_->input("tool.torque_reached")->pulse(milliseconds(5));
   cycle(&bolt1);
   EXPECT_EQ(output(), "idle");
-  EXPECT_TRUE(state_.torque_reached);
-  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result.run_id == 1; }));
+  EXPECT_TRUE(state_.torque_reached());
+  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result().run_id() == 1; }));
   // While the line is held, forward runs are refused and reverse is still possible.
   fake_->input("tool.torque_reached")->set(true);
   const Order bolt2 = tighten(2);
@@ -251,7 +251,7 @@ TEST_F(SmartToolLogicTest, TorqueReachedStopsAForwardRunButNotALoosen) {
   ASSERT_TRUE(cycle_until(&loosen, [&] { return output() == "reverse"; }));
   fake_->input("tool.torque_reached")->set(false);
   ASSERT_TRUE(tighten_to_the_end(bolt2));
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
 }
 
 TEST_F(SmartToolLogicTest, InhibitForcesIdleAndDisablesTheButtons) {
@@ -291,7 +291,7 @@ TEST_F(SmartToolLogicTest, TheSummaryAlarmForcesIdleAndLatchesUntilReset) {
   EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kOk);
   EXPECT_TRUE(errors_.empty()) << errors();
   ASSERT_TRUE(tighten_to_the_end(bolt2));
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
 }
 
 // --- the manual buttons ------------------------------------------------------------------------
@@ -303,22 +303,22 @@ TEST_F(SmartToolLogicTest, ManualButtonsWorkOnlyWhileTheRobotDoesNotHoldTheTool)
   cycles(idle, 5);
   EXPECT_EQ(output(), "idle");
   EXPECT_EQ(blocked_by(), "manual buttons disabled: the robot holds the smart tool");
-  EXPECT_TRUE(state_.button_forward);
+  EXPECT_TRUE(state_.button_forward());
 
   set_tool_on_robot("none");  // the robot left the tool floating: the operator uses it
   ASSERT_TRUE(cycle_until(&idle, [&] { return output() == "forward"; }));
-  EXPECT_EQ(std::string(state_.activity), "manual_forward");
-  EXPECT_EQ(std::string(state_.selected_program), "pipe_plate") << "the hub file's manual_program";
+  EXPECT_EQ(std::string(state_.activity()), "manual_forward");
+  EXPECT_EQ(std::string(state_.selected_program()), "pipe_plate") << "the hub file's manual_program";
   fake_->input("tool.button.forward")->set(false);
   cycles(idle, 2);
   EXPECT_EQ(output(), "idle");
-  ASSERT_TRUE(cycle_until(&idle, [&] { return state_.last_result.program[0] != '\0'; }));
-  EXPECT_EQ(state_.last_result.run_id, 0u) << "manual runs have run_id 0";
-  EXPECT_STREQ(state_.last_result.program, "pipe_plate");
+  ASSERT_TRUE(cycle_until(&idle, [&] { return !state_.last_result().program().empty(); }));
+  EXPECT_EQ(state_.last_result().run_id(), 0u) << "manual runs have run_id 0";
+  EXPECT_EQ(state_.last_result().program(), "pipe_plate");
 
   fake_->input("tool.button.reverse")->set(true);
   ASSERT_TRUE(cycle_until(&idle, [&] { return output() == "reverse"; }));
-  EXPECT_EQ(std::string(state_.activity), "manual_reverse");
+  EXPECT_EQ(std::string(state_.activity()), "manual_reverse");
   EXPECT_EQ(tool_->snapshot().direction, st::Direction::kReverse);
   // The robot takes the tool again: the buttons stop working at once.
   set_tool_on_robot("smart_tool");
@@ -357,8 +357,8 @@ TEST_F(SmartToolLogicTest, NoCommandInForceIsIdle) {
   EXPECT_EQ(output(), "idle");
   EXPECT_FALSE(line("tool.run_forward"));
   ASSERT_TRUE(cycle_until(nullptr, [&] { return !tool_->snapshot().running; }));
-  EXPECT_EQ(state_.last_result.run_id, 1u);
-  EXPECT_FALSE(state_.last_result.ok);
+  EXPECT_EQ(state_.last_result().run_id(), 1u);
+  EXPECT_FALSE(state_.last_result().ok());
 }
 
 TEST_F(SmartToolLogicTest, EnterSafeStateDropsTheRunLines) {
@@ -379,17 +379,17 @@ TEST_F(SmartToolLogicTest, AControllerLostMidRunEndsItAndNeedsResetAndAFreshComm
   ASSERT_TRUE(cycle_until(&bolt1, [&] { return output() == "forward"; }));
   tool_->power_off();
   cycles(bolt1, 6);  // 300 ms: not yet lost
-  EXPECT_TRUE(state_.controller_online);
+  EXPECT_TRUE(state_.controller_online());
   cycles(bolt1, 2);  // > 350 ms after the last heartbeat
-  EXPECT_FALSE(state_.controller_online);
+  EXPECT_FALSE(state_.controller_online());
   EXPECT_EQ(output(), "idle");
   EXPECT_NE(errors().find("tool controller lost: no heartbeat for"), std::string::npos) << errors();
-  EXPECT_EQ(state_.last_result.run_id, 1u);
-  EXPECT_FALSE(state_.last_result.ok);
-  EXPECT_STREQ(state_.last_result.nok_reasons, "controller lost");
+  EXPECT_EQ(state_.last_result().run_id(), 1u);
+  EXPECT_FALSE(state_.last_result().ok());
+  EXPECT_EQ(state_.last_result().nok_reasons(), "controller lost");
 
   tool_->power_on();  // it reboots: no program, counter 0
-  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.controller_online; }));
+  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.controller_online(); }));
   const Order bolt2 = tighten(2);
   cycles(bolt2, 5);
   EXPECT_EQ(output(), "idle") << "latched until reset";
@@ -397,7 +397,7 @@ TEST_F(SmartToolLogicTest, AControllerLostMidRunEndsItAndNeedsResetAndAFreshComm
   reset_command();
   EXPECT_EQ(errors().find("tool controller"), std::string::npos) << errors();
   ASSERT_TRUE(tighten_to_the_end(bolt2)) << errors();
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_EQ(*tool_->snapshot().program, settings_.programs[0].program) << "selected again after the reboot";
 }
 
@@ -410,7 +410,7 @@ TEST_F(SmartToolLogicTest, ABusOffForcesIdleAndLatchesUntilReset) {
   EXPECT_EQ(output(), "idle");
   EXPECT_NE(errors().find("CAN bus tool_bus (vcan-tool): bus-off; outputs idle"), std::string::npos)
       << errors();
-  EXPECT_STREQ(state_.last_result.nok_reasons, "CAN bus fault");
+  EXPECT_EQ(state_.last_result().nok_reasons(), "CAN bus fault");
   fake_->can_network().set_bus_state("vcan-tool", hal::CanBusState::kErrorActive);
   cycles(bolt1, 3);
   EXPECT_NE(errors().find("had a fault (bus-off, down or failed I/O); send reset to clear"),
@@ -422,7 +422,7 @@ TEST_F(SmartToolLogicTest, ABusOffForcesIdleAndLatchesUntilReset) {
   EXPECT_EQ(blocked_by(), "CAN bus fault (latched: send reset)");
   reset_command();
   ASSERT_TRUE(tighten_to_the_end(bolt2)) << errors();
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
@@ -432,15 +432,15 @@ TEST_F(SmartToolLogicTest, TheControllersOwnBusOffIsALostControllerAndItsLateRes
   ASSERT_TRUE(cycle_until(&bolt1, [&] { return output() == "forward"; }));
   tool_->set_bus_off(true);
   ASSERT_TRUE(cycle_until(
-      &bolt1, [&] { return !state_.controller_online; }, 10));
+      &bolt1, [&] { return !state_.controller_online(); }, 10));
   EXPECT_EQ(output(), "idle");
-  EXPECT_STREQ(state_.last_result.nok_reasons, "controller lost");
+  EXPECT_EQ(state_.last_result().nok_reasons(), "controller lost");
   tool_->set_bus_off(false);
   // Back on the bus it reports the aborted run: the hub takes its final values.
   ASSERT_TRUE(cycle_until(
-      &bolt1, [&] { return std::string(state_.last_result.nok_reasons) != "controller lost"; }, 10));
-  EXPECT_STREQ(state_.last_result.nok_reasons, "torque low, link lost");
-  EXPECT_EQ(state_.last_result.run_id, 1u);
+      &bolt1, [&] { return std::string(state_.last_result().nok_reasons()) != "controller lost"; }, 10));
+  EXPECT_EQ(state_.last_result().nok_reasons(), "torque low, link lost");
+  EXPECT_EQ(state_.last_result().run_id(), 1u);
 }
 
 TEST_F(SmartToolLogicTest, AControllerAlarmEndsTheRunAndResetClearsItInTheController) {
@@ -450,9 +450,9 @@ TEST_F(SmartToolLogicTest, AControllerAlarmEndsTheRunAndResetClearsItInTheContro
   tool_->raise_alarm(st::alarm_bit::kOvercurrent);
   cycle(&bolt1);
   EXPECT_EQ(output(), "idle");
-  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result.run_id == 1; }));
-  EXPECT_STREQ(state_.last_result.nok_reasons, "torque low, alarm");
-  EXPECT_STREQ(state_.controller_alarms, "overcurrent");
+  ASSERT_TRUE(cycle_until(&bolt1, [&] { return state_.last_result().run_id() == 1; }));
+  EXPECT_EQ(state_.last_result().nok_reasons(), "torque low, alarm");
+  EXPECT_EQ(state_.controller_alarms(), "overcurrent");
   EXPECT_NE(errors().find("tool controller alarm: overcurrent; outputs idle"), std::string::npos) << errors();
   const Order bolt2 = tighten(2);
   cycles(bolt2, 4);
@@ -463,7 +463,7 @@ TEST_F(SmartToolLogicTest, AControllerAlarmEndsTheRunAndResetClearsItInTheContro
       &bolt2, [&] { return tool_->snapshot().alarms == 0; }, 5))
       << "Reset alarm sent";
   ASSERT_TRUE(tighten_to_the_end(bolt2)) << errors();
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
   EXPECT_TRUE(errors_.empty()) << errors();
 }
 
@@ -498,26 +498,26 @@ TEST_F(SmartToolLogicTest, ARunLineThatCannotBeWrittenIsReported) {
 
 TEST_F(SmartToolLogicTest, BadTightenCommandsAreRejectedWithTheirReason) {
   runtime::Problem problem;
-  SmartToolCommand command{};
+  hub_msgs::SmartToolCommand command;
   const Order zero = tighten(0);
-  command = zero.wire();
+  command = zero.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(),
             "tighten needs a run_id from 1 up (it names the tightening; 0 is reserved for manual runs)");
   const Order unknown = tighten(5, "wheel_nut");
-  command = unknown.wire();
+  command = unknown.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   EXPECT_EQ(problem.view(), "unknown program 'wheel_nut' (expected one of: ladder_frame_bolt, pipe_plate)");
   const Order empty = tighten(5, "");
-  command = empty.wire();
+  command = empty.message();
   EXPECT_FALSE(logic_->validate(command, problem));
   const Order good = tighten(5, "pipe_plate");
-  command = good.wire();
+  command = good.message();
   EXPECT_TRUE(logic_->validate(command, problem));
   // The other actions ignore run_id and program.
   Order idle = action("idle");
   idle.program = "anything";
-  command = idle.wire();
+  command = idle.message();
   EXPECT_TRUE(logic_->validate(command, problem));
 }
 
@@ -542,7 +542,7 @@ TEST_F(SmartToolLogicTest, BeforeTheFirstHeartbeatNothingRunsAndTheStateSaysWhy)
       << errors();
   tool_->power_on();
   ASSERT_TRUE(tighten_to_the_end(bolt1)) << "not latched: a controller booting after the hub is normal";
-  EXPECT_TRUE(state_.last_result.ok);
+  EXPECT_TRUE(state_.last_result().ok());
 }
 
 }  // namespace

@@ -26,7 +26,6 @@ inline Expected<SmartToolLogic> make_smart_tool_logic(const SmartToolSettings& s
 namespace st = protocol::smart_tool;
 using hal::fake::FakeBackend;
 using std::chrono::milliseconds;
-using RspState = hub_msgs_msg_dds__RspState_;
 
 constexpr auto kCycle = milliseconds(50);
 
@@ -38,13 +37,13 @@ struct Order {
   std::string target_name = "tool";
   std::string target_type = "smart_tool";
 
-  [[nodiscard]] SmartToolCommand wire() const {
-    SmartToolCommand command{};
-    command.target_type = const_cast<char*>(target_type.c_str());  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>(target_name.c_str());  // NOLINT
-    command.action = const_cast<char*>(action.c_str());            // NOLINT
-    command.run_id = run_id;
-    command.program = const_cast<char*>(program.c_str());  // NOLINT
+  [[nodiscard]] hub_msgs::SmartToolCommand message() const {
+    hub_msgs::SmartToolCommand command;
+    command.set_target_type(target_type);
+    command.set_target_name(target_name);
+    command.set_action(action);
+    command.set_run_id(run_id);
+    command.set_program(program);
     return command;
   }
 };
@@ -90,10 +89,8 @@ class SmartToolLogicTest : public ::testing::Test {
   }
 
   // The RSP ECU's State says which tool is on the robot; it stays fresh while rsp_alive_.
-  void set_tool_on_robot(const char* tool) {
-    auto* state = static_cast<RspState*>(rsp_.sample_data());
-    dds_free(state->tool);
-    state->tool = dds_string_dup(tool);
+  void set_tool_on_robot(std::string_view tool) {
+    hub_msgs::RspStateRef(*static_cast<hub_msgs::RspState::Wire*>(rsp_.sample_data())).set_tool(tool);
     rsp_.note_arrival(clock_.now().mono);
   }
 
@@ -102,11 +99,12 @@ class SmartToolLogicTest : public ::testing::Test {
     clock_.advance(kCycle);
     const Time now = clock_.now().mono;
     if (rsp_alive_) rsp_.note_arrival(now);
-    if (order != nullptr) command_ = order->wire();
+    if (order != nullptr) command_ = order->message();
     logic_->read_inputs(now);
-    logic_->update(order == nullptr ? nullptr : &command_, now);
+    const hub_msgs::SmartToolCommandView in_force = command_.view();
+    logic_->update(order == nullptr ? nullptr : &in_force, now);
     errors_.clear();
-    state_ = SmartToolState{};
+    state_ = hub_msgs::SmartToolState();
     logic_->report(state_, errors_, now);
   }
   void cycles(const Order* order, int n) {
@@ -138,12 +136,12 @@ class SmartToolLogicTest : public ::testing::Test {
   // Controller heard, status in, arm operating, robot holding the tool: a tighten can start.
   void make_ready() {
     arm_to_operating();
-    ASSERT_TRUE(cycle_until(nullptr, [&] { return state_.controller_online; }));
+    ASSERT_TRUE(cycle_until(nullptr, [&] { return state_.controller_online(); }));
     cycles(nullptr, 3);  // a periodic status (every 100 ms) has arrived
   }
 
-  [[nodiscard]] std::string output() const { return state_.output; }
-  [[nodiscard]] std::string blocked_by() const { return state_.blocked_by; }
+  [[nodiscard]] std::string output() const { return std::string(state_.output()); }
+  [[nodiscard]] std::string blocked_by() const { return std::string(state_.blocked_by()); }
   [[nodiscard]] std::string errors() const {
     std::string out;
     for (std::size_t i = 0; i < errors_.size(); ++i) out += std::string(errors_.at(i)) + "; ";
@@ -153,8 +151,8 @@ class SmartToolLogicTest : public ::testing::Test {
   // Runs tighten `run_id` to its end; true when it ended with a result for it.
   bool tighten_to_the_end(const Order& order) {
     return cycle_until(&order, [&] {
-      return state_.last_result.run_id == order.run_id && state_.output == std::string("idle") &&
-             std::string(state_.activity) == "idle";
+      return state_.last_result().run_id() == order.run_id && state_.output() == std::string("idle") &&
+             std::string(state_.activity()) == "idle";
     });
   }
 
@@ -179,12 +177,12 @@ class SmartToolLogicTest : public ::testing::Test {
   LineChanges line_changes_;
   std::unique_ptr<FakeBackend> fake_;
   hal::fake::SmartToolSimulator* tool_ = nullptr;
-  hub_api::RemoteState<RspState> rsp_{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                      hub_msgs_msg_dds__RspState__desc, 0};
+  hub_api::RemoteState<hub_msgs::RspStateView> rsp_{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
+                                                     hub_msgs_msg_dds__RspState__desc, 0};
   bool rsp_alive_ = true;
   std::optional<SmartToolLogic> logic_;
-  SmartToolCommand command_{};
-  SmartToolState state_{};
+  hub_msgs::SmartToolCommand command_;
+  hub_msgs::SmartToolState state_;
   runtime::ErrorList errors_;
 };
 }  // namespace hubrt::tool_ecu::testing

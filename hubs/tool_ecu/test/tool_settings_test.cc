@@ -75,7 +75,7 @@ std::string lift_error(const std::string& node_yaml) {
   return settings ? "no error" : settings.error().message;
 }
 
-constexpr const char* kProgram =
+constexpr char kProgram[] =
     "    programs:\n      p: {number: 3, torque_nm: 5, angle_min_deg: 10, angle_max_deg: 90}\n";
 
 TEST(ToolSettings, BadSmartToolSettingsNameTheLine) {

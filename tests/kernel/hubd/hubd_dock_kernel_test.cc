@@ -29,6 +29,7 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
+#include "hubrt/msgs/typed.h"
 
 #include "dock_board_file.h"
 #include "dock_messages.h"
@@ -93,7 +94,7 @@ std::string describe(const DockState& s) {
     slots += fmt::format(" {}={}", s.slots._buffer[i].name, s.slots._buffer[i].occupied ? 1 : 0);
   }
   return fmt::format("last State: seq {}, slots [{} ], fresh_msg {}, echo '{}', errors [{}]", s.header.seq,
-                     slots, s.fresh_msg, s.echo.action != nullptr ? s.echo.action : "", error_list(s));
+                     slots, s.fresh_msg, std::string(s.echo.action), error_list(s));
 }
 
 // A line requested by "another program" (this test, under another consumer name), released on
@@ -180,9 +181,9 @@ class HubdDockKernelTest : public ::testing::Test {
 
   void send(const char* action) {
     DockCommand command{};
-    command.target_type = const_cast<char*>("dock");  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>("dock");  // NOLINT
-    command.action = const_cast<char*>(action);       // NOLINT
+    hubrt::msgs::typed::assign(command.target_type, "dock");
+    hubrt::msgs::typed::assign(command.target_name, "dock");
+    hubrt::msgs::typed::assign(command.action, action);
     ASSERT_TRUE(command_writer_->write(command).is_ok());
   }
 

@@ -32,6 +32,7 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
+#include "hubrt/msgs/typed.h"
 
 #include "hub_process.h"
 #include "rsp_messages.h"
@@ -131,10 +132,10 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
 
   void send(const char* action, const char* gripper) {
     RspCommand command{};
-    command.target_type = const_cast<char*>("tool_changer");  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>("rsp");           // NOLINT
-    command.action = const_cast<char*>(action);               // NOLINT
-    command.gripper = const_cast<char*>(gripper);             // NOLINT
+    hubrt::msgs::typed::assign(command.target_type, "tool_changer");
+    hubrt::msgs::typed::assign(command.target_name, "rsp");
+    hubrt::msgs::typed::assign(command.action, action);
+    hubrt::msgs::typed::assign(command.gripper, gripper);
     ASSERT_TRUE(command_writer_->write(command).is_ok());
   }
 

@@ -61,7 +61,9 @@ bool reflect_emit_source_begin(FILE* out, const char* idl_file, const char* stem
 static bool emit_layout_check(FILE* out, const reflect_struct_desc_t* st, const reflect_field_desc_t* f) {
   int n;
   if (f->is_sequence) {
-    n = fprintf(out, "static_assert(std::is_same_v<decltype(std::declval<::%s&>().%s._buffer), %s*>,\n",
+    n = fprintf(out,
+                "static_assert(std::is_same_v<decltype(std::declval<::%s&>().%s._buffer), "
+                "std::add_pointer_t<%s>>,\n",
                 st->c_name, f->name, f->element_c_type);
   } else if (f->is_array) {
     n = fprintf(out, "static_assert(std::is_same_v<decltype(::%s::%s), %s[%u]>,\n", st->c_name, f->name,
@@ -85,9 +87,10 @@ bool reflect_emit_source_struct(FILE* out, const char* idl_file, const reflect_s
     char nested[REFLECT_NAME_MAX + 16] = "nullptr";
     if (f->nested_c_name[0] != '\0') (void)snprintf(nested, sizeof nested, "&%s_type_info", f->nested_c_name);
     ok =
-        fprintf(out, "    {\"%s\", FieldKind::%s, FieldKind::%s, offsetof(::%s, %s), sizeof(%s), %uu, %s},\n",
+        fprintf(out,
+                "    {\"%s\", FieldKind::%s, FieldKind::%s, offsetof(::%s, %s), sizeof(%s), %uu, %s, %uu},\n",
                 f->name, f->kind, f->element_kind, st->c_name, f->name, f->element_c_type, (unsigned)f->bound,
-                nested) > 0;
+                nested, (unsigned)f->string_bound) > 0;
   }
   /* IDL structs have at least one member; this keeps the array well-formed regardless. */
   if (ok && st->field_count == 0) ok = fputs("    {},\n", out) >= 0;

@@ -7,7 +7,7 @@
 
 /* The C type idlc's C generator uses for each base type. The emitter turns this table into
  * static_asserts, so the compiler confirms it against idlc's header on every build. */
-static bool scalar_spelling(idl_type_t type, const char** kind, const char** c_type) {
+bool reflect_scalar_spelling(idl_type_t type, const char** kind, const char** c_type) {
   switch (type) {
     case IDL_BOOL:
       *kind = "kBool";
@@ -83,21 +83,25 @@ static bool describe_element(const idl_pstate_t* pstate, const char* owner, cons
               "%s.%s: array typedefs are not supported by the reflection generator", owner, out->name);
     return false;
   }
-  if (scalar_spelling(idl_type(t), &kind, &c_type)) {
+  if (reflect_scalar_spelling(idl_type(t), &kind, &c_type)) {
     out->element_kind = kind;
     (void)snprintf(out->element_c_type, sizeof out->element_c_type, "%s", c_type);
     return true;
   }
   if (idl_is_string(t)) {
-    if (idl_is_bounded(t)) {
-      /* idlc lays bounded strings out inline as char[N+1]; the wire contract uses unbounded ones
-       * and the runtime checks lengths itself. */
-      idl_error(pstate, idl_location(where),
-                "%s.%s: bounded strings are not supported (the wire contract uses unbounded strings)", owner,
-                out->name);
-      return false;
-    }
     out->element_kind = "kString";
+    if (idl_is_bounded(t)) {
+      /* idlc lays string<N> out inline as char[N+1] (also as a sequence element). */
+      if (out->is_array) {
+        idl_error(pstate, idl_location(where), "%s.%s: arrays of bounded strings are not supported", owner,
+                  out->name);
+        return false;
+      }
+      out->string_bound = idl_bound(t);
+      (void)snprintf(out->element_c_type, sizeof out->element_c_type, "char[%u]",
+                     (unsigned)out->string_bound + 1u);
+      return true;
+    }
     (void)snprintf(out->element_c_type, sizeof out->element_c_type, "char*");
     return true;
   }

@@ -1,12 +1,13 @@
 /* idlc generator plugin: `idlc -l <dir>/libhubrt_idlc_reflect.so -o OUT file.idl` writes
  * OUT/<stem>_reflect.h and OUT/<stem>_reflect.cpp, the reflection tables of every struct declared
- * in file.idl (not of the files it includes; each file gets its own tables). idlc looks the
- * entry point `generate` up with dlsym(). */
+ * in file.idl, and OUT/<stem>_typed.h, their typed C++ accessors and topic registrations (not of the files it
+ * includes; each file gets its own tables). idlc looks the entry point `generate` up with dlsym(). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "emit.h"
+#include "emit_typed.h"
 #include "field_desc.h"
 #include "idlc/generator.h"
 #include "names.h"
@@ -17,6 +18,7 @@ typedef struct generator {
   const idl_pstate_t* pstate;
   FILE* header;
   FILE* source;
+  FILE* typed;
   const char* idl_file;
   const char** c_names; /* structs emitted so far, for the list function */
   size_t c_name_count;
@@ -82,7 +84,8 @@ static void emit_struct(generator_t* gen, const idl_struct_t* node) {
         .field_count = count,
     };
     if (!reflect_emit_header_struct(gen->header, &st) ||
-        !reflect_emit_source_struct(gen->source, gen->idl_file, &st)) {
+        !reflect_emit_source_struct(gen->source, gen->idl_file, &st) ||
+        !reflect_emit_typed_struct(gen->typed, node, st.has_descriptor)) {
       gen->io_error = true;
     }
   }
@@ -124,6 +127,7 @@ static int run(generator_t* gen, const char* out_dir) {
   char stem_id[REFLECT_NAME_MAX];
   char header_path[REFLECT_PATH_MAX];
   char source_path[REFLECT_PATH_MAX];
+  char typed_path[REFLECT_PATH_MAX];
   gen->idl_file = reflect_file_name(path);
   if (!reflect_file_stem(path, stem, sizeof stem) || !reflect_c_identifier(stem, stem_id, sizeof stem_id)) {
     fprintf(stderr, "hubrt_idlc_reflect: file name too long: %s\n", path);
@@ -131,36 +135,43 @@ static int run(generator_t* gen, const char* out_dir) {
   }
   const int hn = snprintf(header_path, sizeof header_path, "%s/%s_reflect.h", out_dir, stem);
   const int sn = snprintf(source_path, sizeof source_path, "%s/%s_reflect.cpp", out_dir, stem);
-  if (hn < 0 || (size_t)hn >= sizeof header_path || sn < 0 || (size_t)sn >= sizeof source_path) {
+  const int tn = snprintf(typed_path, sizeof typed_path, "%s/%s_typed.h", out_dir, stem);
+  if (hn < 0 || (size_t)hn >= sizeof header_path || sn < 0 || (size_t)sn >= sizeof source_path || tn < 0 ||
+      (size_t)tn >= sizeof typed_path) {
     fprintf(stderr, "hubrt_idlc_reflect: output path too long in %s\n", out_dir);
     return IDL_RETCODE_BAD_PARAMETER;
   }
   gen->header = fopen(header_path, "wb");
   gen->source = fopen(source_path, "wb");
+  gen->typed = fopen(typed_path, "wb");
   const char** includes = NULL;
   size_t include_count = 0;
-  if (gen->header == NULL || gen->source == NULL) {
+  if (gen->header == NULL || gen->source == NULL || gen->typed == NULL) {
     fprintf(stderr, "hubrt_idlc_reflect: cannot write %s or %s\n", header_path, source_path);
     gen->io_error = true;
   } else if (!collect_includes(gen->pstate, &includes, &include_count) ||
              !reflect_emit_header_begin(gen->header, gen->idl_file, stem, includes, include_count) ||
-             !reflect_emit_source_begin(gen->source, gen->idl_file, stem)) {
+             !reflect_emit_source_begin(gen->source, gen->idl_file, stem) ||
+             !reflect_emit_typed_begin(gen->typed, gen->idl_file, stem, includes, include_count)) {
     gen->io_error = true;
   } else {
     visit(gen, gen->pstate->root);
     if (!gen->failed && !gen->io_error &&
         (!reflect_emit_header_end(gen->header, gen->idl_file, stem_id) ||
-         !reflect_emit_source_end(gen->source, stem_id, gen->c_names, gen->c_name_count))) {
+         !reflect_emit_source_end(gen->source, stem_id, gen->c_names, gen->c_name_count) ||
+         !reflect_emit_typed_end(gen->typed))) {
       gen->io_error = true;
     }
   }
   free(includes);
   if (gen->header != NULL && fclose(gen->header) != 0) gen->io_error = true;
   if (gen->source != NULL && fclose(gen->source) != 0) gen->io_error = true;
+  if (gen->typed != NULL && fclose(gen->typed) != 0) gen->io_error = true;
   if (gen->failed || gen->io_error) {
     /* Half-written tables must not survive to be compiled by a later build. */
     (void)remove(header_path);
     (void)remove(source_path);
+    (void)remove(typed_path);
   }
   if (gen->io_error) {
     fprintf(stderr, "hubrt_idlc_reflect: failed to write %s / %s\n", header_path, source_path);

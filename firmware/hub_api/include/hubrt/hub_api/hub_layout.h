@@ -71,8 +71,8 @@ class Route {
 template <runtime::NodeLogic Logic>
 class NodeRoute final : public Route {
  public:
-  using Command = typename Logic::Command;
-  using State = typename Logic::State;
+  using Command = msgs::typed::wire_t<typename Logic::Command>;
+  using State = msgs::typed::wire_t<typename Logic::State>;
   NodeRoute(std::size_t command_offset, std::size_t state_offset, std::string node_name)
       : command_offset_(command_offset), state_offset_(state_offset), node_name_(std::move(node_name)) {}
 
@@ -83,13 +83,13 @@ class NodeRoute final : public Route {
   void distribute(const void* hub_command) noexcept override {
     Command fragment{};
     std::memcpy(&fragment, static_cast<const std::byte*>(hub_command) + command_offset_, sizeof fragment);
-    if (fragment.target_type == nullptr || *fragment.target_type == '\0') fragment.target_type = type_.data();
-    if (fragment.target_name == nullptr || *fragment.target_name == '\0')
-      fragment.target_name = node_name_.data();
+    if (msgs::typed::view(fragment.target_type).empty()) msgs::typed::assign(fragment.target_type, type_);
+    if (msgs::typed::view(fragment.target_name).empty())
+      msgs::typed::assign(fragment.target_name, node_name_);
     source_.post(fragment);
   }
   void collect(void* hub_state) const noexcept override {
-    std::memcpy(static_cast<std::byte*>(hub_state) + state_offset_, &node_->state(), sizeof(State));
+    std::memcpy(static_cast<std::byte*>(hub_state) + state_offset_, &node_->state().wire(), sizeof(State));
   }
 
  private:
@@ -126,11 +126,11 @@ class HubLevelLogic {
   void update(const Command* in_force, Time now) noexcept {
     if (in_force == nullptr) return;
     if (tracker_ != nullptr && tracker_->since_last_command(now) != Duration::zero()) return;
-    for (const auto& route : *routes_) route->distribute(in_force);
+    for (const auto& route : *routes_) route->distribute(&in_force->wire());
   }
   void reset() noexcept {}
   void report(State& state, runtime::ErrorList& /*errors*/, Time /*now*/) noexcept {
-    for (const auto& route : *routes_) route->collect(&state);
+    for (const auto& route : *routes_) route->collect(&state.wire());
   }
   void enter_safe_state() noexcept {}
 
@@ -143,8 +143,8 @@ class HubLevelLogic {
 template <class HubTypes>
 class HubLayoutStage final : public runtime::CycleStage {
  public:
-  using HubCommand = typename HubTypes::Command;
-  using HubState = typename HubTypes::State;
+  using HubCommand = msgs::typed::wire_t<typename HubTypes::Command>;
+  using HubState = msgs::typed::wire_t<typename HubTypes::State>;
 
   HubLayoutStage(dds::Topic<HubCommand> command_topic, dds::Topic<HubState> state_topic,
                  DdsCommandSource<HubCommand> source, DdsStateSink<HubState> sink)
@@ -192,13 +192,13 @@ Expected<std::size_t> struct_field_offset(const msgs::TypeInfo& outer, std::stri
 }  // namespace detail
 
 // Adds nodes to a hub with the layout its configuration asks for. HubTypes names the hub-level
-// types: `using Command = ...; using State = ...; static constexpr std::string_view kType = "...";`
-// (both registered with HUBRT_DDS_TOPIC_TYPE).
+// types: `using Command = <Hub>CommandView; using State = <Hub>State; static constexpr
+// std::string_view kType = "...";` (the generated typed classes; <idl>_typed.h registers the topics).
 template <class HubTypes>
 class NodeWiring {
  public:
-  using HubCommand = typename HubTypes::Command;
-  using HubState = typename HubTypes::State;
+  using HubCommand = msgs::typed::wire_t<typename HubTypes::Command>;
+  using HubState = msgs::typed::wire_t<typename HubTypes::State>;
 
   // What add() checks of node `node` in the configuration alone (hub layout: the hub-level
   // messages have a field `node.name` of Logic's types), without DDS (`hubd --check`).
@@ -206,12 +206,13 @@ class NodeWiring {
   template <runtime::NodeLogic Logic>
   static Expected<void> check(const config::HubConfig& config, const config::NodeConfig& node) {
     if (config.layout != config::Layout::kHub) return {};
-    auto command_offset =
-        detail::struct_field_offset(msgs::type_info_of<HubCommand>(), node.name,
-                                    msgs::type_info_of<typename Logic::Command>(), config.file);
+    auto command_offset = detail::struct_field_offset(
+        msgs::type_info_of<HubCommand>(), node.name,
+        msgs::type_info_of<msgs::typed::wire_t<typename Logic::Command>>(), config.file);
     if (!command_offset) return std::move(command_offset).error();
-    auto state_offset = detail::struct_field_offset(msgs::type_info_of<HubState>(), node.name,
-                                                    msgs::type_info_of<typename Logic::State>(), config.file);
+    auto state_offset = detail::struct_field_offset(
+        msgs::type_info_of<HubState>(), node.name,
+        msgs::type_info_of<msgs::typed::wire_t<typename Logic::State>>(), config.file);
     if (!state_offset) return std::move(state_offset).error();
     return {};
   }
@@ -245,11 +246,13 @@ class NodeWiring {
   Expected<void> add(const config::NodeConfig& node, Logic logic) {
     if (stage_ == nullptr) return add_node_type_oriented(context_, hub_, node, std::move(logic));
     const auto& file = context_.config.file;
-    auto command_offset = detail::struct_field_offset(msgs::type_info_of<HubCommand>(), node.name,
-                                                      msgs::type_info_of<typename Logic::Command>(), file);
+    auto command_offset =
+        detail::struct_field_offset(msgs::type_info_of<HubCommand>(), node.name,
+                                    msgs::type_info_of<msgs::typed::wire_t<typename Logic::Command>>(), file);
     if (!command_offset) return std::move(command_offset).error();
-    auto state_offset = detail::struct_field_offset(msgs::type_info_of<HubState>(), node.name,
-                                                    msgs::type_info_of<typename Logic::State>(), file);
+    auto state_offset =
+        detail::struct_field_offset(msgs::type_info_of<HubState>(), node.name,
+                                    msgs::type_info_of<msgs::typed::wire_t<typename Logic::State>>(), file);
     if (!state_offset) return std::move(state_offset).error();
     auto route = std::make_unique<detail::NodeRoute<Logic>>(*command_offset, *state_offset, node.name);
     runtime::NodeOptions options;
@@ -260,9 +263,9 @@ class NodeWiring {
     // budget here would only keep the embedded header from being restamped.
     options.immediate_state_interval = Duration::zero();
     options.log = context_.log;
-    auto added =
-        std::make_unique<runtime::Node<Logic>>(std::move(options), std::move(logic), route->source(),
-                                               route->sink(), message_ops<typename Logic::Command>());
+    auto added = std::make_unique<runtime::Node<Logic>>(
+        std::move(options), std::move(logic), route->source(), route->sink(),
+        message_ops<msgs::typed::wire_t<typename Logic::Command>>());
     route->attach(*added);
     stage_->routes().push_back(std::move(route));
     hub_.add_node(std::move(added));

@@ -11,6 +11,7 @@
 #include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hub_api/topic_names.h"
 #include "hubrt/msgs/type_info.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/reflected_message_ops.h"
 
@@ -20,8 +21,8 @@ namespace hubrt::hub_api {
 // before the topics they use.
 template <runtime::NodeLogic Logic>
 struct NodeTypePorts {
-  using Command = typename Logic::Command;
-  using State = typename Logic::State;
+  using Command = msgs::typed::wire_t<typename Logic::Command>;
+  using State = msgs::typed::wire_t<typename Logic::State>;
   dds::Topic<Command> command_topic;
   dds::Topic<State> state_topic;
   DdsCommandSource<Command> source;
@@ -40,8 +41,8 @@ const runtime::MessageOps& message_ops() {
 template <runtime::NodeLogic Logic>
 Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& hub,
                                       const config::NodeConfig& node, Logic logic) {
-  using Command = typename Logic::Command;
-  using State = typename Logic::State;
+  using Command = msgs::typed::wire_t<typename Logic::Command>;
+  using State = msgs::typed::wire_t<typename Logic::State>;
   const auto fail = [&](const Error& error) {
     return make_error(error.code, fmt::format("node '{}': {}", node.name, error.message));
   };

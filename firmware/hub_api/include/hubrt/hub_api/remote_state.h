@@ -7,10 +7,13 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <type_traits>
 
 #include "hubrt/base/time.h"
 #include "hubrt/dds/sample.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/runtime/text_buffer.h"
 
 namespace hubrt::hub_api {
@@ -60,14 +63,21 @@ class RemoteStateBase {
   runtime::TextBuffer<160> reason_;
 };
 
-// Typed view: T is the State type the logic expects (checked when the subscription is made).
+// Typed view: T is the State type the logic expects (checked when the subscription is made):
+// a generated View (e.g. hub_msgs::DockStateView) or an idlc C struct.
 template <class T>
 class RemoteState final : public RemoteStateBase {
  public:
+  using Wire = msgs::typed::wire_t<T>;
   using RemoteStateBase::RemoteStateBase;
-  // The latest State if it is fresh at `now`, else nullptr. Valid until the next cycle.
-  [[nodiscard]] const T* fresh(Time now) const noexcept {
-    return is_fresh(now) ? static_cast<const T*>(field()) : nullptr;
+  // The latest State if it is fresh at `now`: a View (std::nullopt when not fresh) or, for a C
+  // struct, a pointer (nullptr when not fresh). Valid until the next cycle.
+  [[nodiscard]] auto fresh(Time now) const noexcept {
+    if constexpr (std::is_same_v<T, Wire>) {
+      return is_fresh(now) ? static_cast<const T*>(field()) : nullptr;
+    } else {
+      return is_fresh(now) ? std::optional<T>(T(*static_cast<const Wire*>(field()))) : std::nullopt;
+    }
   }
 };
 

@@ -30,7 +30,7 @@ class Subscriptions {
   // its type unknown, or not T (nor holding a T in `field:`); DDS entities that fail.
   template <class T>
   Expected<RemoteState<T>*> get(std::string_view name) {
-    auto found = prepare(name, msgs::type_info_of<T>());
+    auto found = prepare(name, msgs::type_info_of<msgs::typed::wire_t<T>>());
     if (!found) return std::move(found).error();
     auto state = std::make_unique<RemoteState<T>>(found->name, found->topic, found->timeout,
                                                   *found->descriptor, found->field_offset);
@@ -43,7 +43,7 @@ class Subscriptions {
   // T or holds a T in `field:` — without DDS (`hubd --check`). Errors: as get().
   template <class T>
   static Expected<void> check(const config::HubConfig& config, std::string_view name) {
-    auto found = find(config, name, msgs::type_info_of<T>());
+    auto found = find(config, name, msgs::type_info_of<msgs::typed::wire_t<T>>());
     if (!found) return std::move(found).error();
     return {};
   }

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string_view>
 
@@ -27,7 +28,8 @@ enum class FieldKind : std::uint8_t {
   kUInt64,    // uint64_t
   kFloat32,   // float
   kFloat64,   // double
-  kString,    // char*, unbounded, owned by the sample (dds_string_dup / dds_free)
+  kString,    // char* (unbounded, owned by the sample: dds_string_dup / dds_free), or, when
+              // FieldInfo::string_bound is N > 0 (IDL string<N>), char[N+1] inline
   kStruct,    // an embedded struct, described by FieldInfo::nested
   kSequence,  // dds_sequence_X {_maximum, _length, _buffer, _release} of element_kind
   kArray,     // X[bound], inline, of element_kind
@@ -46,6 +48,9 @@ struct FieldInfo {
   std::uint32_t bound;
   // The struct type when kind or element_kind is kStruct, else nullptr.
   const TypeInfo* nested;
+  // N of IDL string<N> when kind or element_kind is kString and the string is bounded: stored
+  // inline as char[N+1], NUL-terminated. 0: unbounded (char*) or not a string.
+  std::uint32_t string_bound = 0;
 };
 
 struct TypeInfo {
@@ -71,12 +76,23 @@ constexpr const TypeInfo& type_info_of() noexcept {
   return TypeInfoOf<T>::value;
 }
 
+// The text of the string (element) of `field` stored at `addr`: char* or, bounded, char[N+1]
+// (read up to its NUL, at most N+1 bytes). A null char* reads as "". Thread-safe.
+inline std::string_view string_at(const FieldInfo& field, const void* addr) noexcept {
+  if (field.string_bound != 0) {
+    const char* text = static_cast<const char*>(addr);
+    return {text, ::strnlen(text, std::size_t{field.string_bound} + 1)};
+  }
+  const char* text = *static_cast<const char* const*>(addr);
+  return text == nullptr ? std::string_view() : std::string_view(text);
+}
+
 // Stable lower-case IDL-style name of a kind, e.g. "uint32", "sequence". Thread-safe.
 std::string_view to_string(FieldKind kind) noexcept;
 
 // The field's type as a reader would write it: "float32", "string", "hub_msgs/msg/DockSlot",
-// "sequence<string>", "int32[3]", "sequence<hub_msgs/msg/DockSlot, 8>". Struct types are given by
-// their ROS name, or their DDS name when they have none. Thread-safe.
+// "sequence<string>", "string<64>", "int32[3]", "sequence<hub_msgs/msg/DockSlot, 8>". Struct types are given
+// by their ROS name, or their DDS name when they have none. Thread-safe.
 std::string describe_type(const FieldInfo& field);
 
 }  // namespace hubrt::msgs

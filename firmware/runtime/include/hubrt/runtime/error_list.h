@@ -1,5 +1,5 @@
 // The `error_list` of a State: rebuilt every cycle from what is wrong right now, in storage sized
-// once, and bound into the wire sample without copying.
+// once, then copied into the State's bounded `sequence<string<191>, 16>` (copy_to()).
 #pragma once
 
 #include <array>
@@ -34,7 +34,6 @@ class ErrorList {
     }
     entries_[count_].format(spec, std::forward<Args>(args)...);
     entries_[count_].make_valid_utf8();
-    pointers_[count_] = const_cast<char*>(entries_[count_].c_str());  // NOLINT: the wire type wants char*
     ++count_;
   }
 
@@ -48,19 +47,16 @@ class ErrorList {
     return false;
   }
 
-  // Points an idlc `sequence<string>` (fields _maximum, _length, _buffer, _release) at our
-  // storage. The sample must not be freed with DDS_FREE_ALL while bound.
+  // Replaces the entries of a State's error_list (a generated SequenceRef of string<kMaxLength>,
+  // at most kMaxEntries: the IDL bounds match these, so nothing is cut).
   template <class Sequence>
-  void bind(Sequence& seq) noexcept {
-    seq._maximum = static_cast<std::uint32_t>(kMaxEntries);
-    seq._length = static_cast<std::uint32_t>(count_);
-    seq._buffer = pointers_.data();
-    seq._release = false;
+  void copy_to(const Sequence& seq) const noexcept {
+    seq.clear();
+    for (std::size_t i = 0; i < count_; ++i) seq.push_back(entries_[i].view());
   }
 
  private:
   std::array<TextBuffer<kMaxLength>, kMaxEntries> entries_{};
-  std::array<char*, kMaxEntries> pointers_{};
   std::size_t count_ = 0;
   std::size_t dropped_ = 0;
 };

@@ -11,11 +11,13 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "hubrt/base/time.h"
+#include "hubrt/msgs/typed.h"
 #include "hubrt/runtime/arena.h"
 #include "hubrt/runtime/command_tracker.h"
 #include "hubrt/runtime/error_list.h"
@@ -33,6 +35,8 @@ inline constexpr std::string_view kResetAction = "reset";
 inline constexpr std::size_t kMaxCommandString = 64;
 
 // What a node type implements. All calls happen on the cycle thread and must not allocate.
+// Command is the generated read-only view of the node's command (e.g. hub_msgs::DockCommandView)
+// and State the generated owning State type (e.g. hub_msgs::DockState); see firmware/msgs/README.md.
 template <class L>
 concept NodeLogic = requires(L& logic, const L& const_logic, const typename L::Command& command,
                              typename L::State& state, ErrorList& errors, Problem& problem, Time now) {
@@ -120,11 +124,17 @@ class Node final : public NodeBase {
  public:
   using Command = typename Logic::Command;
   using State = typename Logic::State;
+  // The idlc C structs on the wire behind the typed classes.
+  using CommandWire = msgs::typed::wire_t<Command>;
+  using StateWire = msgs::typed::wire_t<State>;
+  static_assert(!std::is_same_v<Command, CommandWire> && !std::is_same_v<State, StateWire>,
+                "Logic::Command and Logic::State are the generated typed classes (<idl>_typed.h), "
+                "e.g. hub_msgs::DockCommandView and hub_msgs::DockState");
 
   static constexpr std::size_t kEchoArenaBytes = 4096;
 
-  // `ops` describes Command; `source` and `sink` must outlive the node.
-  Node(NodeOptions options, Logic logic, CommandSource<Command>& source, StateSink<State>& sink,
+  // `ops` describes CommandWire; `source` and `sink` must outlive the node.
+  Node(NodeOptions options, Logic logic, CommandSource<CommandWire>& source, StateSink<StateWire>& sink,
        const MessageOps& ops)
       : options_(std::move(options)),
         logic_(std::move(logic)),
@@ -138,7 +148,8 @@ class Node final : public NodeBase {
         std::find(Logic::kActions.begin(), Logic::kActions.end(), kResetAction) != Logic::kActions.end(),
         "every node type accepts the reset action");
     if (!options_.log) options_.log = spdlog::default_logger();
-    state_.name = const_cast<char*>(options_.name.c_str());  // NOLINT: wire type wants char*
+    // The configuration checks node names (a ROS name token of at most kMaxCommandString bytes).
+    state_.set_name(options_.name);
   }
   ~Node() override = default;
   Node(const Node&) = delete;
@@ -170,7 +181,8 @@ class Node final : public NodeBase {
     logic_.read_inputs(now.mono);
     transition_to_report_ |= decide_lifecycle();
     const bool operational = lifecycle_.state() == Lifecycle::kOperational;
-    logic_.update(operational ? &echo() : nullptr, now.mono);
+    const Command in_force(echo());
+    logic_.update(operational ? &in_force : nullptr, now.mono);
     return took_effect;
   }
   // Rebuilds the State (common fields and the logic's) from what advance() left.
@@ -193,12 +205,14 @@ class Node final : public NodeBase {
       transition_to_report_ = false;
       report_transition(first_logic_error);
     }
-    state_.header.lifecycle = static_cast<std::uint8_t>(lifecycle_.state());
-    state_.echo = echo();
-    state_.fresh_msg = tracker_.fresh();
-    state_.t_plus = static_cast<float>(tracker_.t_plus(now));
-    state_.got_reset = tracker_.got_reset();
-    errors_.bind(state_.error_list);
+    state_.header().set_lifecycle(static_cast<std::uint8_t>(lifecycle_.state()));
+    // A plain copy of the echo's C struct: whatever sequences a command type has point into
+    // arenas_, which live as long as the node (and the State).
+    state_.wire().echo = echo();
+    state_.set_fresh_msg(tracker_.fresh());
+    state_.set_t_plus(static_cast<float>(tracker_.t_plus(now)));
+    state_.set_got_reset(tracker_.got_reset());
+    errors_.copy_to(state_.error_list());
   }
 
   Status publish(const Instant& now) noexcept override {
@@ -213,10 +227,10 @@ class Node final : public NodeBase {
 
   // Stamps the State built by the last step and hands it to the sink.
   Status stamp_and_publish(const Instant& now) noexcept {
-    state_.header.seq = ++published_;
-    state_.header.stamp.sec = static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000);
-    state_.header.stamp.nanosec = static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000);
-    return sink_.publish(state_);
+    state_.header().set_seq(++published_);
+    state_.header().stamp().set_sec(static_cast<std::int32_t>(now.wall.ns_since_epoch / 1'000'000'000));
+    state_.header().stamp().set_nanosec(static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000));
+    return sink_.publish(state_.wire());
   }
 
   void enter_safe_state() noexcept override {
@@ -276,22 +290,23 @@ class Node final : public NodeBase {
   bool take_commands(Time now) noexcept {
     bool took_effect = false;
     for (;;) {
-      const Result<const Command*> next = source_.next();
+      const Result<const CommandWire*> next = source_.next();
       if (!next.is_ok()) {
         options_.log->error("{}: taking commands failed: {}", options_.name, to_string(next.status().code()));
         break;
       }
-      const Command* command = next.value();
-      if (command == nullptr) break;
-      if (!addressed_here(*command)) continue;
-      if (!accept(*command, now)) continue;
-      took_effect |= take(*command, now);
+      const CommandWire* wire = next.value();
+      if (wire == nullptr) break;
+      const Command command(*wire);
+      if (!addressed_here(command)) continue;
+      if (!accept(command, now)) continue;
+      took_effect |= take(command, now);
     }
     return took_effect;
   }
 
   [[nodiscard]] bool addressed_here(const Command& command) const noexcept {
-    return options_.addressing == Addressing::kRejectOthers || view(command.target_name) == options_.name;
+    return options_.addressing == Addressing::kRejectOthers || command.target_name() == options_.name;
   }
 
   // Validates a command addressed here; a rejected one is reported and changes nothing else.
@@ -299,19 +314,21 @@ class Node final : public NodeBase {
   // nothing a peer sends may reach a State unescaped.
   bool accept(const Command& command, Time now) noexcept {
     Problem& problem = last_rejection_;
-    bool ok = ops_.check_fields(&command, kMaxCommandString, problem);
-    if (ok && view(command.target_name) != options_.name) {
-      problem.format("wrong target: addressed to '{}', this node is '{}'", Escaped{view(command.target_name)},
+    // Cyclone already dropped samples over the IDL bounds; this checks what the bounds cannot
+    // (UTF-8, control characters, NaN) and the length of commands built in-process.
+    bool ok = ops_.check_fields(&command.wire(), kMaxCommandString, problem);
+    if (ok && command.target_name() != options_.name) {
+      problem.format("wrong target: addressed to '{}', this node is '{}'", Escaped{command.target_name()},
                      options_.name);
       ok = false;
     }
-    if (ok && view(command.target_type) != Logic::kType) {
-      problem.format("wrong target type '{}' for node '{}' of type '{}'", Escaped{view(command.target_type)},
+    if (ok && command.target_type() != Logic::kType) {
+      problem.format("wrong target type '{}' for node '{}' of type '{}'", Escaped{command.target_type()},
                      options_.name, Logic::kType);
       ok = false;
     }
-    if (ok && !known_action(view(command.action))) {
-      problem.format("unknown action '{}' (expected one of: {})", Escaped{view(command.action)},
+    if (ok && !known_action(command.action())) {
+      problem.format("unknown action '{}' (expected one of: {})", Escaped{command.action()},
                      fmt::join(Logic::kActions, ", "));
       ok = false;
     }
@@ -337,45 +354,42 @@ class Node final : public NodeBase {
 
   // Records a valid command; copies it into the echo when its content is new.
   bool take(const Command& command, Time now) noexcept {
-    const bool differs = !tracker_.has_echo() || !ops_.equal(&command, &echo());
+    const bool differs = !tracker_.has_echo() || !ops_.equal(&command.wire(), &echo());
     // Copy into the spare buffer first, so a command too large to hold leaves the echo intact.
-    if (differs && !ops_.copy_into(&command, &echoes_[1 - current_], arenas_[1 - current_])) {
+    if (differs && !ops_.copy_into(&command.wire(), &echoes_[1 - current_], arenas_[1 - current_])) {
       last_rejection_.format("command too large to hold (more than {} bytes of strings and sequences)",
                              kEchoArenaBytes);
       note_rejection(now);
       return false;
     }
     if (differs) current_ = 1 - current_;
-    const bool is_reset = view(command.action) == kResetAction;
+    const bool is_reset = command.action() == kResetAction;
     if (tracker_.on_valid_command(now, differs, is_reset) != CommandTracker::Arrival::kTookEffect)
       return false;
     has_rejection_ = false;
     if (is_reset) logic_.reset();
-    options_.log->debug("{}: command took effect: action '{}'", options_.name, view(echo().action));
+    options_.log->debug("{}: command took effect: action '{}'", options_.name, Command(echo()).action());
     return true;
   }
 
-  [[nodiscard]] const Command& echo() const noexcept { return echoes_[current_]; }
+  [[nodiscard]] const CommandWire& echo() const noexcept { return echoes_[current_]; }
 
   [[nodiscard]] static bool known_action(std::string_view action) noexcept {
     return std::find(Logic::kActions.begin(), Logic::kActions.end(), action) != Logic::kActions.end();
   }
-  [[nodiscard]] static std::string_view view(const char* text) noexcept {
-    return text == nullptr ? std::string_view() : std::string_view(text);
-  }
 
   NodeOptions options_;
   Logic logic_;
-  CommandSource<Command>& source_;
-  StateSink<State>& sink_;
+  CommandSource<CommandWire>& source_;
+  StateSink<StateWire>& sink_;
   const MessageOps& ops_;
   CommandTracker tracker_;
   ImmediateStateBudget budget_;
   // Double-buffered deep copies of the echoed command; echoes_[current_] is the echo.
   std::array<Arena, 2> arenas_;
-  std::array<Command, 2> echoes_{};
+  std::array<CommandWire, 2> echoes_{};
   int current_ = 0;
-  State state_{};
+  State state_;  // owns the storage its sequences point into
   ErrorList errors_;
   Problem last_rejection_;
   Problem last_logged_;

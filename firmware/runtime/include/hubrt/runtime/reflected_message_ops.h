@@ -25,5 +25,7 @@ class ReflectedMessageOps final : public MessageOps {
 // bytes, well-formed UTF-8 per RFC 3629 (hubrt::is_valid_utf8: no overlongs, no encoded
 // surrogates, nothing above U+10FFFF), no control characters. Reads at most max_length + 1 bytes.
 const char* string_problem(const char* text, std::size_t max_length) noexcept;
+// The same for text already delimited (a bounded string's bytes up to its NUL).
+const char* string_problem(std::string_view bytes, std::size_t max_length) noexcept;
 
 }  // namespace hubrt::runtime
