@@ -216,7 +216,7 @@ class OversizeCommandTest : public ::testing::Test {
       const DockState& s = sample.get();
       const std::lock_guard lock(mutex_);
       stamps_[s.header.seq] = s.header.stamp.sec + s.header.stamp.nanosec * 1e-9;
-      last_action_ = s.echo.action == nullptr ? "" : s.echo.action;
+      last_action_ = static_cast<const char*>(s.echo.action);
       last_fresh_ = s.fresh_msg;
     }
   }

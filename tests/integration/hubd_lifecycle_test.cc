@@ -90,9 +90,12 @@ class HubdLifecycleTest : public ::testing::Test {
         {
           const std::lock_guard lock(mutex_);
           if (!action_.empty()) {
-            const std::string type = "lift", name = "lift";
-            LiftCommand command{wire(type), wire(name), wire(action_), wire(position_)};
-            EXPECT_TRUE(command_writer_->write(command).is_ok());
+            hub_msgs::LiftCommand command;
+            command.set_target_type("lift");
+            command.set_target_name("lift");
+            command.set_action(action_);
+            command.set_position(position_);
+            EXPECT_TRUE(command_writer_->write(command.wire()).is_ok());
           }
         }
         std::this_thread::sleep_for(milliseconds(100));
@@ -144,7 +147,7 @@ class HubdLifecycleTest : public ::testing::Test {
     return fmt::format(
         "last lift State: lifecycle {} ({}), fresh_msg {}, target '{}', moving {}, errors '{}'\nhubd:\n{}",
         s.header.lifecycle, runtime::lifecycle_name(s.header.lifecycle), s.fresh_msg,
-        s.target == nullptr ? "" : s.target, s.moving, joined(s), hub_->output());
+        static_cast<const char*>(s.target), s.moving, joined(s), hub_->output());
   }
   void sim_fault(const std::string& fault) {
     const std::string hub = "tool_ecu", device = "lift_drive";

@@ -67,7 +67,7 @@ class NodeLifecycleTest : public ::testing::Test {
     if (!operational) {
       EXPECT_FALSE(world_.open) << "outputs not safe in state " << lifecycle_name(state());
     }
-    EXPECT_EQ(node_->state().header.lifecycle, static_cast<std::uint8_t>(state()));
+    EXPECT_EQ(node_->state().header().lifecycle(), static_cast<std::uint8_t>(state()));
   }
   [[nodiscard]] Lifecycle state() const { return node_->lifecycle().state(); }
   [[nodiscard]] std::string reason() const { return std::string(node_->lifecycle().reason()); }
@@ -133,7 +133,7 @@ TEST_F(NodeLifecycleTest, ALatchedFaultHoldsTheNodeSafeUntilAResetWhileTheComman
   EXPECT_EQ(state(), Lifecycle::kFault);
   EXPECT_EQ(reason(), "latched fault, send reset to clear: overpressure: valve held closed until reset")
       << "the reason names the logic's first error";
-  EXPECT_TRUE(node_->state().fresh_msg) << "the command is in force, yet the logic does not get it";
+  EXPECT_TRUE(node_->state().fresh_msg()) << "the command is in force, yet the logic does not get it";
 
   world_.overpressure_input = false;
   for (int i = 0; i < 3; ++i) cycle("open");
@@ -141,7 +141,7 @@ TEST_F(NodeLifecycleTest, ALatchedFaultHoldsTheNodeSafeUntilAResetWhileTheComman
 
   // A fault outranks safe: a planner that went quiet comes back to a node that asks for a reset.
   for (int i = 0; i < 7; ++i) cycle();
-  EXPECT_FALSE(node_->state().fresh_msg);
+  EXPECT_FALSE(node_->state().fresh_msg());
   EXPECT_EQ(state(), Lifecycle::kFault);
 
   world_.overpressure_input = true;
@@ -194,7 +194,7 @@ TEST_F(NodeLifecycleTest, TheHubStoppingDrivesTheNodeSafeForGood) {
   EXPECT_EQ(state(), Lifecycle::kSafe);
   EXPECT_EQ(reason(), "hub stopping: outputs driven safe");
   EXPECT_FALSE(world_.open);
-  EXPECT_EQ(node_->state().header.lifecycle, static_cast<std::uint8_t>(Lifecycle::kSafe));
+  EXPECT_EQ(node_->state().header().lifecycle(), static_cast<std::uint8_t>(Lifecycle::kSafe));
   cycle("open");
   EXPECT_EQ(state(), Lifecycle::kSafe) << "a command after the stop must not actuate";
   EXPECT_EQ(count_of(log(), "v1: lifecycle operational -> safe (transition 2): hub stopping"), 1u) << log();
@@ -204,10 +204,10 @@ TEST_F(NodeLifecycleTest, TheHubStoppingDrivesTheNodeSafeForGood) {
 TEST_F(NodeLifecycleTest, ThePublishedHeaderCarriesTheLifecycle) {
   cycle();
   ASSERT_TRUE(node_->publish(clock_.now()).is_ok());
-  EXPECT_EQ(node_->state().header.lifecycle, 2u);  // LIFECYCLE_SAFE
+  EXPECT_EQ(node_->state().header().lifecycle(), 2u);  // LIFECYCLE_SAFE
   cycle("open");
   ASSERT_TRUE(node_->publish(clock_.now()).is_ok());
-  EXPECT_EQ(node_->state().header.lifecycle, 3u);  // LIFECYCLE_OPERATIONAL
+  EXPECT_EQ(node_->state().header().lifecycle(), 3u);  // LIFECYCLE_OPERATIONAL
 }
 
 // The ROS 2 interface names the same numbers: LIFECYCLE_<NAME>=<number> for every state.

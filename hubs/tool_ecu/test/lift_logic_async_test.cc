@@ -35,7 +35,7 @@ TEST_F(LiftLogicTest, TheLogicTalksToTheDriveOnlyFromItsCycle) {
   clock_.advance(kStep);
   cycle(&work);
   EXPECT_EQ(logic_->snapshot().rounds, 1u);
-  EXPECT_TRUE(state_.drive_online);
+  EXPECT_TRUE(state_.drive_online());
   ASSERT_EQ(script_.submitted().size(), 2u);
   EXPECT_EQ(script_.submitted()[1].write_count, ld::holding::kCount);
   EXPECT_EQ(submitted_control_word(), ld::control::kEnable | ld::control::kMove);
@@ -55,10 +55,10 @@ TEST_F(LiftLogicTest, ACompletionOlderThanAnswerWithinReadsUnknown) {
   EXPECT_EQ(logic_->snapshot().rounds, 1u);
   EXPECT_TRUE(logic_->snapshot().answered);
   EXPECT_EQ(logic_->snapshot().read_at, submitted);
-  EXPECT_FALSE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 501u);
-  EXPECT_STREQ(state_.fault_text, "unknown");
-  EXPECT_FALSE(state_.in_position) << "the drive is in position, but that reading is too old to say so";
+  EXPECT_FALSE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 501u);
+  EXPECT_EQ(state_.fault_text(), "unknown");
+  EXPECT_FALSE(state_.in_position()) << "the drive is in position, but that reading is too old to say so";
   EXPECT_NE(errors().find("not answering for 0.50 s"), std::string::npos) << errors();
 
   // The same answer taken 500 ms after its request is current.
@@ -67,18 +67,19 @@ TEST_F(LiftLogicTest, ACompletionOlderThanAnswerWithinReadsUnknown) {
   auto logic = LiftLogic::create(settings_, script.open(), clock_.now().mono);
   ASSERT_TRUE(logic) << logic.error().message;
   const Time again = clock_.now().mono;
-  command_ = home.wire();
+  command_ = home.message();
   logic->read_inputs(again);
-  logic->update(&command_, again);
+  const hub_msgs::LiftCommandView in_force = command_.view();
+  logic->update(&in_force, again);
   script.complete(again + milliseconds(10));
   logic->read_inputs(again + milliseconds(500));
-  state_ = LiftState{};
+  state_ = hub_msgs::LiftState();
   errors_.clear();
   logic->report(state_, errors_, again + milliseconds(500));
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, 500u);
-  EXPECT_TRUE(state_.in_position);
-  EXPECT_STREQ(state_.fault_text, "");
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), 500u);
+  EXPECT_TRUE(state_.in_position());
+  EXPECT_EQ(state_.fault_text(), "");
 }
 
 // A request the device never completes is reported as timed out at its deadline (the time the
@@ -98,7 +99,7 @@ TEST_F(LiftLogicTest, ARequestPastItsDeadlineIsATimeoutAndTheLogicAsksAgain) {
   EXPECT_EQ(script_.submitted().size(), 2u) << "asked again in the same cycle";
   script_.complete(clock_.now().mono);
   step(&home);
-  EXPECT_TRUE(state_.drive_online);
+  EXPECT_TRUE(state_.drive_online());
   EXPECT_EQ(logic_->snapshot().failures_in_a_row, 0u);
 }
 

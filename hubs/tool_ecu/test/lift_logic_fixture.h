@@ -32,12 +32,12 @@ struct Order {
   std::string target_name = "lift";
   std::string target_type = "lift";
 
-  [[nodiscard]] LiftCommand wire() const {
-    LiftCommand command{};
-    command.target_type = const_cast<char*>(target_type.c_str());  // NOLINT: wire type wants char*
-    command.target_name = const_cast<char*>(target_name.c_str());  // NOLINT
-    command.action = const_cast<char*>(action.c_str());            // NOLINT
-    command.position = const_cast<char*>(position.c_str());        // NOLINT
+  [[nodiscard]] hub_msgs::LiftCommand message() const {
+    hub_msgs::LiftCommand command;
+    command.set_target_type(target_type);
+    command.set_target_name(target_name);
+    command.set_action(action);
+    command.set_position(position);
     return command;
   }
 };
@@ -83,11 +83,12 @@ class LiftLogicTest : public ::testing::Test {
   // One cycle at the current manual time, as the Node runs it.
   void cycle(const Order* order) {
     const Time now = clock_.now().mono;
-    if (order != nullptr) command_ = order->wire();
+    if (order != nullptr) command_ = order->message();
     logic_->read_inputs(now);
-    logic_->update(order == nullptr ? nullptr : &command_, now);
+    const hub_msgs::LiftCommandView in_force = command_.view();
+    logic_->update(order == nullptr ? nullptr : &in_force, now);
     errors_.clear();
-    state_ = LiftState{};
+    state_ = hub_msgs::LiftState();
     logic_->report(state_, errors_, now);
   }
   // Advances the manual clock one step; the request the last cycle submitted runs at the new time
@@ -132,8 +133,8 @@ class LiftLogicTest : public ::testing::Test {
   DriveScript script_{drive_};
   bool answering_ = true;
   std::optional<LiftLogic> logic_;
-  LiftCommand command_{};
-  LiftState state_{};
+  hub_msgs::LiftCommand command_;
+  hub_msgs::LiftState state_;
   runtime::ErrorList errors_;
 };
 

@@ -17,19 +17,19 @@ TEST_F(LiftLogicTest, MovesToANamedPositionAndReportsIt) {
   start();
   const Order work = move("work");
   step(&work);  // the first request reads the drive
-  EXPECT_FALSE(state_.drive_online) << "no reading yet";
+  EXPECT_FALSE(state_.drive_online()) << "no reading yet";
   step(&work);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_STREQ(state_.target, "work");
-  EXPECT_FLOAT_EQ(state_.target_mm, 120.0F);
-  ASSERT_TRUE(step_until(&work, [&] { return state_.moving; })) << errors();
-  EXPECT_TRUE(state_.enabled);
-  EXPECT_FLOAT_EQ(state_.speed_mm_s, 100.0F) << "the hub file's speed, up";
-  EXPECT_STREQ(state_.at, "");
-  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at) == "work"; })) << errors();
-  EXPECT_TRUE(state_.in_position);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_NEAR(state_.position_mm, 120.0, 0.5);
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_EQ(state_.target(), "work");
+  EXPECT_FLOAT_EQ(state_.target_mm(), 120.0F);
+  ASSERT_TRUE(step_until(&work, [&] { return state_.moving(); })) << errors();
+  EXPECT_TRUE(state_.enabled());
+  EXPECT_FLOAT_EQ(state_.speed_mm_s(), 100.0F) << "the hub file's speed, up";
+  EXPECT_EQ(state_.at(), "");
+  ASSERT_TRUE(step_until(&work, [&] { return std::string(state_.at()) == "work"; })) << errors();
+  EXPECT_TRUE(state_.in_position());
+  EXPECT_FALSE(state_.moving());
+  EXPECT_NEAR(state_.position_mm(), 120.0, 0.5);
   EXPECT_NEAR(drive_.position_mm(clock_.now().mono), 120.0, 0.5);
   EXPECT_TRUE(errors_.empty()) << errors();
 
@@ -86,7 +86,7 @@ TEST_F(LiftLogicTest, NoCommandInForceStopsTheLift) {
 TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   // The drive answered the request in flight; safe state comes before the next cycle and sends
   // "stop" at once, without waiting for a cycle.
   ASSERT_TRUE(script_.complete(clock_.now().mono));
@@ -111,7 +111,7 @@ TEST_F(LiftLogicTest, EnterSafeStateAndShutdownStopTheDrive) {
 TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   drive_.inject_overcurrent(clock_.now().mono);
   step(&home);
   EXPECT_TRUE(state_.fault());
@@ -122,7 +122,7 @@ TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
             std::string::npos)
       << errors();
   EXPECT_EQ(logic_->condition(), runtime::NodeCondition::kFault) << "the node's lifecycle: fault";
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(home, 5);  // the planner keeps asking: nothing moves
   EXPECT_FLOAT_EQ(state_.position_mm(), held);
 
@@ -140,11 +140,11 @@ TEST_F(LiftLogicTest, ADriveFaultStopsLatchesAndNeedsResetAndAFreshMove) {
 TEST_F(LiftLogicTest, AJammedLoadTripsAFollowingErrorAndRecoversAfterReset) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   drive_.set_blocked(true, clock_.now().mono);
-  ASSERT_TRUE(step_until(&home, [&] { return state_.fault; }));
-  EXPECT_EQ(state_.fault_code, 2);
-  EXPECT_STREQ(state_.fault_text, "following error");
+  ASSERT_TRUE(step_until(&home, [&] { return state_.fault(); }));
+  EXPECT_EQ(state_.fault_code(), 2);
+  EXPECT_EQ(state_.fault_text(), "following error");
   drive_.set_blocked(false, clock_.now().mono);
   steps(home, 3);
   EXPECT_TRUE(state_.fault()) << "latched in the drive until reset";
@@ -155,7 +155,7 @@ TEST_F(LiftLogicTest, AJammedLoadTripsAFollowingErrorAndRecoversAfterReset) {
 TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
   start();
   const Order work = move("work");
-  ASSERT_TRUE(step_until(&work, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&work, [&] { return state_.moving(); }));
   drive_.set_overtemperature(true, clock_.now().mono);
   ASSERT_TRUE(step_until(
       &work, [&] { return state_.fault(); }, 5));
@@ -171,13 +171,13 @@ TEST_F(LiftLogicTest, AnOvertemperatureCannotBeResetWhileHot) {
 TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); }));
   answering_ = false;
   step(&home);
   EXPECT_GT(logic_->snapshot().failures_in_a_row, 0u) << "the client's call timed out";
   EXPECT_EQ(logic_->snapshot().last_error, ErrorCode::kTimeout);
   steps(home, 5);  // 600 ms of manual time without an answer; the last reading's request 700 ms ago
-  EXPECT_FALSE(state_.drive_online);
+  EXPECT_FALSE(state_.drive_online());
   EXPECT_NE(errors().find("not answering for 0.70 s"), std::string::npos) << errors();
   EXPECT_NE(errors().find("limit 0.50 s, last error: timeout); lift state unknown"), std::string::npos)
       << errors();
@@ -191,7 +191,7 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
   // out with the next one, decided from this reading.
   EXPECT_EQ(submitted_control_word(), ld::control::kStop | ld::control::kEnable);
   step(&home);
-  const float held = state_.position_mm;
+  const float held = state_.position_mm();
   steps(home, 3);
   EXPECT_FLOAT_EQ(state_.position_mm(), held) << "latched: no motion until reset";
   reset_command();
@@ -206,7 +206,7 @@ TEST_F(LiftLogicTest, ADriveThatStopsAnsweringIsAnErrorNotAHang) {
 TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirmsTheLift) {
   start();
   const Order home = move("home");
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving && state_.position_mm > 20.0F; }));
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving() && state_.position_mm() > 20.0F; }));
   answering_ = false;
   step(&home);
   ASSERT_GT(logic_->snapshot().failures_in_a_row, 0u);
@@ -246,8 +246,8 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   // Its watchdog trips 1000 ms after the last request it got (the last read, 100 ms after last_read).
   clock_.set(last_read + milliseconds(1200));
   cycle(&home);
-  EXPECT_EQ(state_.reading_age_ms, 1200u);
-  EXPECT_FALSE(state_.moving);
+  EXPECT_EQ(state_.reading_age_ms(), 1200u);
+  EXPECT_FALSE(state_.moving());
   const auto drive = drive_.read(clock_.now().mono);
   EXPECT_EQ(drive.input[ld::input::kFaultCode], static_cast<std::uint16_t>(ld::FaultCode::kWatchdog));
   EXPECT_EQ(drive.input[ld::input::kStatusWord] & ld::status::kMoving, 0);
@@ -255,14 +255,14 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   // A fresh reading confirms it: stopped by its watchdog, values current again.
   answering_ = true;
   step(&home);
-  EXPECT_TRUE(state_.drive_online);
-  EXPECT_LE(state_.reading_age_ms, 100u);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_TRUE(state_.fault);
-  EXPECT_EQ(state_.fault_code, 4);
-  EXPECT_STREQ(state_.fault_text, "communication watchdog");
-  EXPECT_NEAR(state_.position_mm, drive_.position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
-  EXPECT_GT(state_.position_mm, last_seen_mm + 80.0F) << "where the drive went on its own";
+  EXPECT_TRUE(state_.drive_online());
+  EXPECT_LE(state_.reading_age_ms(), 100u);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_TRUE(state_.fault());
+  EXPECT_EQ(state_.fault_code(), 4);
+  EXPECT_EQ(state_.fault_text(), "communication watchdog");
+  EXPECT_NEAR(state_.position_mm(), drive_.position_mm(clock_.now().mono), 0.15);  // register: 0.1 mm
+  EXPECT_GT(state_.position_mm(), last_seen_mm + 80.0F) << "where the drive went on its own";
   EXPECT_EQ(errors().find("lift motion unknown"), std::string::npos) << errors();
   EXPECT_NE(errors().find("stopped answering for a while; send reset to clear"), std::string::npos)
       << errors();
@@ -277,16 +277,16 @@ TEST_F(LiftLogicTest, ADriveThatNeverAnswersIsReportedAfterTheLimit) {
   EXPECT_EQ(logic_->snapshot().last_error, ErrorCode::kTimeout);
   EXPECT_TRUE(errors_.empty()) << "not yet (400 ms): " << errors();
   steps(home, 2);
-  EXPECT_FALSE(state_.drive_online);
-  EXPECT_EQ(state_.reading_age_ms, kNeverRead);
-  EXPECT_FALSE(state_.moving);
-  EXPECT_STREQ(state_.fault_text, "unknown");
+  EXPECT_FALSE(state_.drive_online());
+  EXPECT_EQ(state_.reading_age_ms(), kNeverRead);
+  EXPECT_FALSE(state_.moving());
+  EXPECT_EQ(state_.fault_text(), "unknown");
   EXPECT_NE(errors().find("no answer since start (last error: timeout); lift state unknown"),
             std::string::npos)
       << errors();
   // A drive that comes up after the hub is normal operation: not latched.
   answering_ = true;
-  ASSERT_TRUE(step_until(&home, [&] { return state_.moving; })) << errors();
+  ASSERT_TRUE(step_until(&home, [&] { return state_.moving(); })) << errors();
 }
 
 TEST_F(LiftLogicTest, BadMoveCommandsAreRejectedWithTheirReason) {

@@ -237,7 +237,7 @@ class Node final : public NodeBase {
     stopping_ = true;
     if (lifecycle_.enter(Lifecycle::kSafe, "hub stopping: outputs driven safe"))
       report_transition(errors_.size());
-    state_.header.lifecycle = static_cast<std::uint8_t>(lifecycle_.state());
+    state_.header().set_lifecycle(static_cast<std::uint8_t>(lifecycle_.state()));
     logic_.enter_safe_state();
   }
 
@@ -258,7 +258,7 @@ class Node final : public NodeBase {
     const Lifecycle next = node_lifecycle(stopping_, tracker_.in_force(), logic_.condition());
     switch (next) {
       case Lifecycle::kOperational:
-        return lifecycle_.enter(next, "command '{}' in force", view(echo().action));
+        return lifecycle_.enter(next, "command '{}' in force", Escaped{Command(echo()).action()});
       case Lifecycle::kFault:
         return lifecycle_.enter(next, "latched fault, send reset to clear");
       case Lifecycle::kRecovering:
