@@ -92,9 +92,13 @@ TEST_P(HubdToolTest, WhenThePlannerStopsTheToolGoesIdleAndTheLiftStops) {
   ASSERT_TRUE(wait_for([](const View& v) { return v.tool.output == "idle" && v.lift.target.empty(); }))
       << describe();
   EXPECT_NE(view_.tool.errors.find("command timeout"), std::string::npos) << describe();
+  // The drive is read once per cycle (the HAL's asynchronous Modbus, one request per cycle), so the
+  // State that first shows the stop carries the reading taken a cycle before it (100 ms at 10 Hz:
+  // up to 10 mm at 100 mm/s, its age in reading_age_ms). The position holds from the next reading.
+  ASSERT_TRUE(watch_for(milliseconds(250), [](const View&) {})) << describe();
   const float held = view_.lift.position_mm;
   // Unstopped it would move 50 mm while the hub runs for 500 ms (100 mm/s); a few mm allow for the
-  // one exchange of the drive's worker that may have been under way when the State was built.
+  // drive's own deceleration.
   ASSERT_TRUE(watch_for(milliseconds(500), [held](const View& v) {
     EXPECT_NEAR(v.lift.position_mm, held, 5.0) << "stopped";
   })) << describe();
