@@ -23,7 +23,8 @@
 #include "hubrt/hal/common/supervised_device.h"
 #include "hubrt/runtime/node.h"
 
-#include "dock_messages.h"
+#include "dock_reflect.h"  // the Dock ECU's messages (its library is not ours to link)
+#include "dock_typed.h"
 #include "gripper_monitor.h"
 #include "lock_position.h"
 #include "rsp_messages.h"

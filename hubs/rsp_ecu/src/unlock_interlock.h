@@ -8,7 +8,8 @@
 #include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/message_ops.h"
 
-#include "dock_messages.h"
+#include "dock_reflect.h"  // the Dock ECU's messages (its library is not ours to link)
+#include "dock_typed.h"
 #include "tool_id.h"
 
 namespace hubrt::rsp_ecu {

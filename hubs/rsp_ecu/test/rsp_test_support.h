@@ -11,7 +11,8 @@
 #include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/ports.h"
 
-#include "dock_messages.h"
+#include "dock_reflect.h"  // the Dock ECU's messages (its library is not ours to link)
+#include "dock_typed.h"
 #include "rsp_ecu_hub_type.h"
 #include "rsp_logic.h"
 #include "rsp_messages.h"
