@@ -3,10 +3,10 @@
 
 #include <vector>
 
-#include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/board/board_config.h"
 #include "hubrt/hal/common/supervised_device.h"
+#include "hubrt/hub_api/hub_type.h"
 
 #include "dock_logic.h"
 

@@ -82,8 +82,7 @@ class RspEcuHubType final : public hub_api::HubType {
     for (const config::NodeConfig& node : config.nodes) {
       auto settings = parse_rsp_settings(node);
       if (!settings) return std::move(settings).error();
-      auto dock =
-          hub_api::Subscriptions::check<hub_msgs::DockStateView>(config, settings->dock_subscription);
+      auto dock = hub_api::Subscriptions::check<hub_msgs::DockStateView>(config, settings->dock_subscription);
       if (!dock) return dock;
       auto wired = hub_api::NodeWiring<RspEcuTypes>::check<RspLogic>(config, node);
       if (!wired) return wired;

@@ -2,9 +2,9 @@
 // gripper confirms, pressure switch), each watching the Dock ECU's State through a subscription.
 #pragma once
 
-#include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/board/board_config.h"
+#include "hubrt/hub_api/hub_type.h"
 
 #include "rsp_logic.h"
 

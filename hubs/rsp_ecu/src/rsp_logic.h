@@ -19,8 +19,8 @@
 #include <array>
 #include <vector>
 
-#include "hubrt/hub_api/remote_state.h"
 #include "hubrt/hal/common/supervised_device.h"
+#include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/node.h"
 
 #include "dock_reflect.h"  // the Dock ECU's messages (its library is not ours to link)

@@ -12,8 +12,6 @@
 #include <spdlog/sinks/null_sink.h>
 #include <spdlog/spdlog.h>
 
-#include "hubrt/hub_api/dds_ports.h"
-#include "hubrt/hub_api/node_wiring.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/reader.h"
@@ -21,6 +19,8 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/fake/fake_backend.h"
+#include "hubrt/hub_api/dds_ports.h"
+#include "hubrt/hub_api/node_wiring.h"
 #include "hubrt/runtime/hub.h"
 #include "hubrt/runtime/node.h"
 #include "hubrt/test_support/test_domain.h"

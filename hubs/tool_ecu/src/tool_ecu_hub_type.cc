@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/hal/common/threaded_async_modbus.h"
 #include "hubrt/hub_api/hub_layout.h"
 #include "hubrt/hub_api/subscriptions.h"
-#include "hubrt/hal/common/threaded_async_modbus.h"
 #include "hubrt/hubs/board_devices.h"
 
 #include "lift_logic.h"

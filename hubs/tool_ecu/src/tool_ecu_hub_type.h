@@ -3,9 +3,9 @@
 // system on a Modbus drive).
 #pragma once
 
-#include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hal/backend.h"
 #include "hubrt/hal/board/board_config.h"
+#include "hubrt/hub_api/hub_type.h"
 
 #include "smart_tool_logic.h"
 

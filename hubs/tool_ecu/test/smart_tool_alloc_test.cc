@@ -58,7 +58,7 @@ TEST(SmartToolSteadyCycle, AllocatesNothing) {
   auto fake = hal::fake::FakeBackend::create(*board, clock);
   ASSERT_TRUE(fake) << fake.error().message;
   hub_api::RemoteState<hub_msgs::RspStateView> rsp{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                                    hub_msgs_msg_dds__RspState__desc, 0};
+                                                   hub_msgs_msg_dds__RspState__desc, 0};
   hub_msgs::RspStateRef(*static_cast<hub_msgs::RspState::Wire*>(rsp.sample_data())).set_tool("smart_tool");
   auto devices = open_smart_tool_devices(*settings, *board, **fake, clock.now().mono);
   ASSERT_TRUE(devices) << devices.error().message;
