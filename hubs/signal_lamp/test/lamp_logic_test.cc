@@ -195,5 +195,23 @@ TEST(SignalLampSettings, BadSettingsNameTheLine) {
             "lamp.yaml:4:11: nodes.lamp.type: a signal_lamp hub has nodes of type 'lamp' only, not 'dock'");
 }
 
+// The hub layout needs no code of the hub type's own: NodeWiring checks that the hub-level
+// messages (msg/signal_lamp.idl) have a field named as the node, of the node's types.
+TEST(SignalLampLayouts, TheHubLayoutNeedsTheNodeCalledLikeItsField) {
+  const auto check = [](const std::string& node_name) -> Expected<void> {
+    auto root = config::YamlMap::load_string(
+        "hub: signal_lamp\nlayout: hub\nnodes:\n  " + node_name + ":\n    type: lamp\n    signal: a\n",
+        "lamp.yaml");
+    if (!root) return std::move(root).error();
+    auto config = config::parse_hub_config(*root);
+    if (!config) return std::move(config).error();
+    return signal_lamp_hub_type().check(*config);
+  };
+  EXPECT_TRUE(check("lamp"));
+  const auto other = check("beacon");
+  ASSERT_FALSE(other);
+  EXPECT_NE(other.error().message.find("beacon"), std::string::npos) << other.error().message;
+}
+
 }  // namespace
 }  // namespace hubrt::signal_lamp
