@@ -1,10 +1,11 @@
 // The real hubd on the fake backend with the hub's own test board (test/lamp-sim.yaml), commanded
 // over Cyclone DDS on loopback in the test's own domain (TestDomain): what the runtime gives a new
 // hub type for free (echo, fresh_msg, the watchdog, the lifecycle, a clean stop) around the lamp.
-#include <atomic>
 #include <csignal>
 #include <functional>
+#include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -92,22 +93,33 @@ class HubdLampTest : public ::testing::Test {
   }
 
   // Like the planner: the wanted command, repeated every 50 ms (the timeout is 1 s).
-  void command(const char* action) {
-    action_ = action;
+  void command(std::string_view action) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      action_ = action;
+      planning_ = true;
+    }
     if (planner_.joinable()) return;
     planner_ = std::thread([this] {
-      while (const char* current = action_.load()) {
+      for (;;) {
         hub_msgs::LampCommand c;
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          if (!planning_) return;
+          c.set_action(action_);
+        }
         c.set_target_type("lamp");
         c.set_target_name("lamp");
-        c.set_action(current);
         if (!command_writer_->write(c.wire()).is_ok()) return;
         std::this_thread::sleep_for(milliseconds(50));
       }
     });
   }
   void stop_planner() {
-    action_ = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      planning_ = false;
+    }
     if (planner_.joinable()) planner_.join();
   }
 
@@ -119,7 +131,9 @@ class HubdLampTest : public ::testing::Test {
   std::optional<dds::Reader<LampState>> state_reader_;
   dds::Sample<LampState> state_;
   std::optional<integration::HubProcess> hub_;
-  std::atomic<const char*> action_{nullptr};
+  std::mutex mutex_;  // guards action_ and planning_, shared with the planner thread
+  std::string action_;
+  bool planning_ = false;
   std::thread planner_;
 };
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
@@ -18,10 +19,10 @@ namespace {
 // Generous: sanitizer builds on a loaded 2-core machine; a run takes about 8 s.
 constexpr auto kSuiteTimeout = std::chrono::seconds(90);
 
-class LampConformanceTest : public ::testing::TestWithParam<const char*> {};
+class LampConformanceTest : public ::testing::TestWithParam<std::string_view> {};
 
 TEST_P(LampConformanceTest, PassesEveryCheck) {
-  const std::string layout = GetParam();
+  const std::string layout(GetParam());
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
   // The shipped hub file, in the layout under test.
@@ -56,7 +57,8 @@ TEST_P(LampConformanceTest, PassesEveryCheck) {
   EXPECT_NE(report.find("safe-state fields"), std::string::npos) << report;
 }
 
-INSTANTIATE_TEST_SUITE_P(Layouts, LampConformanceTest, ::testing::Values("node_type", "hub"));
+INSTANTIATE_TEST_SUITE_P(Layouts, LampConformanceTest,
+                         ::testing::Values(std::string_view("node_type"), std::string_view("hub")));
 
 }  // namespace
 }  // namespace hubrt::signal_lamp

@@ -19,7 +19,7 @@ namespace {
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-constexpr const char* kSignal = "lamp.light";
+constexpr std::string_view kSignal = "lamp.light";
 
 hub_msgs::LampCommand command(std::string_view action) {
   hub_msgs::LampCommand c;
@@ -83,7 +83,7 @@ class LampLogicTest : public ::testing::Test {
 TEST_F(LampLogicTest, TheDefaultConfigurationUsesTheTestBoardsOutput) {
   auto required = signal_lamp_hub_type().requirements(config_);
   ASSERT_TRUE(required) << required.error().message;
-  ASSERT_EQ(required->outputs, std::vector<std::string>{kSignal});
+  ASSERT_EQ(required->outputs, std::vector<std::string>{std::string(kSignal)});
   EXPECT_TRUE(hal::check_requirements(board_, *required));
   EXPECT_TRUE(signal_lamp_hub_type().check(config_));
 }
