@@ -27,8 +27,12 @@
 #include "dock_ecu_typed.h"
 #include "dock_reflect.h"
 #include "dock_typed.h"
+#include "lamp_reflect.h"
+#include "lamp_typed.h"
 #include "rsp_reflect.h"
 #include "rsp_typed.h"
+#include "signal_lamp_reflect.h"
+#include "signal_lamp_typed.h"
 #include "station.h"
 #include "station_reflect.h"
 #include "tool_ecu_reflect.h"
@@ -303,9 +307,11 @@ TEST(CommandCorpus, EveryStringFieldOfEveryCommandTypeRejectsBadTextAndReportsIt
   run_corpus<hub_msgs::SmartToolCommandView, hub_msgs::SmartToolState>();
   run_corpus<hub_msgs::LiftCommandView, hub_msgs::LiftState>();
   run_corpus<hub_msgs::ToolEcuCommandView, hub_msgs::ToolEcuState>();
+  run_corpus<hub_msgs::LampCommandView, hub_msgs::LampState>();
+  run_corpus<hub_msgs::SignalLampCommandView, hub_msgs::SignalLampState>();
   run_check_fields_corpus<hub_msgs_msg_dds__StationCommand_>();
 
-  // Every Command type built into the station (target_type, target_name, action first) is in
+  // Every Command type built into hubrt (target_type, target_name, action first) is in
   // the list above: a new hub's commands fail here until they are added.
   for (const TypeInfo* type : msgs::all_types().types()) {
     const auto& f = type->fields;
