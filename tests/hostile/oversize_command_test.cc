@@ -327,10 +327,17 @@ TEST_F(HUBRT_OVERSIZE_SUITE, CostNoMemoryStopNoHeartbeatAndAreCountedInDiagnosti
       static_cast<unsigned long long>(count_before.value_or(0)),
       static_cast<unsigned long long>(count_after.value_or(0)));
 
-  EXPECT_LE(rss_after - rss_before, kMaxRssGrowthKb) << "hubd kept the oversize commands' memory";
-  // The States cover the whole run: the heartbeat went on while the commands came in.
-  EXPECT_GE(static_cast<double>(states), sending_s / kPeriodS / 2) << "too few States\n" << hub_->output();
-  EXPECT_LE(worst_gap, kMaxGapS) << "the heartbeat stopped";
+  // Under an emulator (the cross tier's qemu-user) the RSS read is the emulator's, translation
+  // cache included, and its speed is not the board's: memory and heartbeat are judged in native
+  // builds; the count and the command afterwards hold everywhere.
+  if (test_support::target_emulator().empty()) {
+    EXPECT_LE(rss_after - rss_before, kMaxRssGrowthKb) << "hubd kept the oversize commands' memory";
+    // The States cover the whole run: the heartbeat went on while the commands came in.
+    EXPECT_GE(static_cast<double>(states), sending_s / kPeriodS / 2) << "too few States\n" << hub_->output();
+    EXPECT_LE(worst_gap, kMaxGapS) << "the heartbeat stopped";
+  } else {
+    std::printf("under an emulator: RSS and heartbeat gap printed above, not judged\n");
+  }
   // Cyclone warns once per dropped sample (q_receive.c, drop_oversize), and every sample of a
   // keep-all reliable writer reaches the hub at least in part: exactly the number sent.
   EXPECT_TRUE(count_before && count_after) << "no oversize_samples_dropped on /diagnostics";
