@@ -1,13 +1,21 @@
-// Helpers for the RSP ECU tests: commands whose strings they own, and a Dock ECU State fed into a
-// RemoteState as the subscription stage would.
+// Helpers for the RSP ECU tests: commands whose strings they own, a Dock ECU State fed into a
+// RemoteState as the subscription stage would, and the logic tests' fixture (RspLogicTest).
 #pragma once
 
+#include <chrono>
 #include <cstring>
 #include <deque>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "hubrt/config/hub_config.h"
+#include "hubrt/hal/board/board_loader.h"
+#include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/hub_api/remote_state.h"
 #include "hubrt/runtime/ports.h"
 
@@ -96,5 +104,90 @@ inline std::vector<std::pair<std::string, bool>> dock_slots(bool ladder_frame_ho
           {"smart_tool", smart_home},
           {"spare", false}};
 }
+
+// The tool-changer logic on the simulation board's fake backend (host-sim.yaml, the hub file
+// rsp_ecu.yaml) with a manual clock, the Dock ECU's State fed in as the subscription would: the
+// fixture of the rsp_logic_*_test.cc files.
+class RspLogicTest : public ::testing::Test {
+ protected:
+  static constexpr Duration kCycle = std::chrono::milliseconds(10);
+
+  void SetUp() override {
+    auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
+    ASSERT_TRUE(board) << board.error().message;
+    board_ = std::move(*board);
+    auto config = config::load_hub_config(std::string(HUBRT_HUBS_DIR) + "/rsp_ecu/rsp_ecu.yaml");
+    ASSERT_TRUE(config) << config.error().message;
+    auto settings = parse_rsp_settings(config->nodes.at(0));
+    ASSERT_TRUE(settings) << settings.error().message;
+    settings_ = std::move(*settings);
+    auto fake = hal::fake::FakeBackend::create(board_, clock_);
+    ASSERT_TRUE(fake) << fake.error().message;
+    fake_ = std::move(*fake);
+  }
+
+  RspLogic make_logic() {
+    auto logic = make_rsp_logic(settings_, board_, *fake_, dock_.input(), clock_.now().mono);
+    EXPECT_TRUE(logic) << logic.error().message;
+    return std::move(*logic);
+  }
+
+  // The Dock ECU keeps publishing this (every cycle) until dock_silent().
+  void dock_reports(bool ladder_frame_home, bool filter_home, bool smart_home) {
+    dock_slots_ = dock_slots(ladder_frame_home, filter_home, smart_home);
+  }
+  void dock_silent() { dock_slots_.reset(); }
+
+  // The tool-ID lines show `tool` ("none": no line).
+  void tool_on_changer(std::string_view tool) {
+    for (const std::string_view name : {"ladder_frame_tool", "smart_tool", "filter_tool"}) {
+      set_input(std::string("rsp.tool_id.") + std::string(name), tool == name);
+    }
+  }
+  void set_input(const std::string& signal, bool active) {
+    hal::fake::SettableInput* input = fake_->input(signal);
+    ASSERT_NE(input, nullptr) << signal;
+    input->set(active);
+  }
+
+  // One cycle at the current time; returns the State the logic reports.
+  hub_msgs::RspState cycle(RspLogic& logic, OwnedCommand* in_force) {
+    const Time now = clock_.now().mono;
+    if (dock_slots_) dock_.arrive(*dock_slots_, now);
+    logic.read_inputs(now);
+    std::optional<hub_msgs::RspCommandView> view;
+    if (in_force != nullptr) view = in_force->view();
+    logic.update(view ? &*view : nullptr, now);
+    errors_.clear();
+    hub_msgs::RspState state;
+    logic.report(state, errors_, now);
+    return state;
+  }
+  // Cycles every 10 ms for `span` (the first at once); returns the last State.
+  hub_msgs::RspState run_for(RspLogic& logic, Duration span, OwnedCommand* in_force) {
+    hub_msgs::RspState state = cycle(logic, in_force);
+    for (Duration t = kCycle; t <= span; t += kCycle) {
+      clock_.advance(kCycle);
+      state = cycle(logic, in_force);
+    }
+    return state;
+  }
+
+  bool output(std::string_view signal) {
+    auto level = fake_->active(signal);
+    EXPECT_TRUE(level.is_ok()) << signal;
+    return level.value_or(false);
+  }
+  bool lock_valve_energised() { return output("rsp.lock_valve"); }
+  bool gripper_valve_energised() { return output("rsp.gripper_valve"); }
+
+  ManualClock clock_;
+  hal::BoardConfig board_;
+  RspSettings settings_;
+  std::unique_ptr<hal::fake::FakeBackend> fake_;
+  DockFeed dock_{std::chrono::milliseconds(500)};
+  std::optional<std::vector<std::pair<std::string, bool>>> dock_slots_;
+  runtime::ErrorList errors_;
+};
 
 }  // namespace hubrt::rsp_ecu::testing

@@ -131,14 +131,17 @@ class SmartToolLogic {
                  ToolController controller, std::unique_ptr<ToolHolderView> holder,
                  std::shared_ptr<spdlog::logger> log);
 
+  bool read_input(hal::SupervisedInput& input, bool& unreadable, Time now) noexcept;
+  void observe_faults(Time now) noexcept;
+
+  // Interlocks (smart_tool_interlocks.cc).
   Want decide(const Command* in_force, Time now) noexcept;
   // Each returns true when something forbids running now, and says what in blocked_by_.
   bool fault_blocks() noexcept;
   bool planner_blocked(bool forward, int program) noexcept;
   Want manual() noexcept;
-  bool read_input(hal::SupervisedInput& input, bool& unreadable, Time now) noexcept;
-  void observe_faults(Time now) noexcept;
 
+  // The run through the controller (smart_tool_run_sequence.cc).
   void begin(const Want& want, Time now) noexcept;
   void send_start(Time now) noexcept;
   void stop(Time now) noexcept;
@@ -152,7 +155,8 @@ class SmartToolLogic {
   }
   [[nodiscard]] RunOutput wanted_output() const noexcept;
   [[nodiscard]] std::string_view activity() const noexcept;
-  void format_reasons(std::uint16_t reasons) noexcept;
+
+  // The State (smart_tool_report.cc).
   // The controller's status values, or "unknown" for all of them when the status is stale.
   void report_status(State& state, Time now) noexcept;
 
