@@ -178,7 +178,7 @@ class SmartToolLogicTest : public ::testing::Test {
   std::unique_ptr<FakeBackend> fake_;
   hal::fake::SmartToolSimulator* tool_ = nullptr;
   hub_api::RemoteState<hub_msgs::RspStateView> rsp_{"rsp", "/rsp_ecu/rsp/state", milliseconds(500),
-                                                     hub_msgs_msg_dds__RspState__desc, 0};
+                                                    hub_msgs_msg_dds__RspState__desc, 0};
   bool rsp_alive_ = true;
   std::optional<SmartToolLogic> logic_;
   hub_msgs::SmartToolCommand command_;
