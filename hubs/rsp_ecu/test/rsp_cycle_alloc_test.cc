@@ -27,32 +27,27 @@ using testing::NullSink;
 using testing::OwnedCommand;
 using testing::QueueSource;
 
-TEST(RspCycle, TheCounterSeesAnAllocation) {
+// The shipped board and hub file on the fake backend: RspLogicTest's set-up.
+class RspCycle : public testing::RspLogicTest {};
+
+TEST_F(RspCycle, TheCounterSeesAnAllocation) {
   AllocationScope scope;
   auto* text = new std::string(100, 'x');  // NOLINT: deliberately allocating to prove the counter works
   delete text;                             // NOLINT
   EXPECT_GE(scope.count(), 1u);
 }
 
-TEST(RspCycle, AllocatesNothingInSteadyState) {
-  ManualClock clock;
-  auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
-  ASSERT_TRUE(board) << board.error().message;
-  auto config = config::load_hub_config(std::string(HUBRT_HUBS_DIR) + "/rsp_ecu/rsp_ecu.yaml");
-  ASSERT_TRUE(config) << config.error().message;
-  auto settings = parse_rsp_settings(config->nodes.at(0));
-  ASSERT_TRUE(settings) << settings.error().message;
-  auto fake = hal::fake::FakeBackend::create(*board, clock);
-  ASSERT_TRUE(fake) << fake.error().message;
-  DockFeed dock(milliseconds(500));
-  auto logic = testing::make_rsp_logic(*settings, *board, **fake, dock.input(), clock.now().mono);
-  ASSERT_TRUE(logic) << logic.error().message;
+TEST_F(RspCycle, AllocatesNothingInSteadyState) {
+  ManualClock& clock = clock_;
+  DockFeed& dock = dock_;
+  RspLogic logic = make_logic();
+  ASSERT_FALSE(HasFailure());
   QueueSource source;
   NullSink sink;
   runtime::NodeOptions options;
   options.name = "rsp";
   options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
-  runtime::Node<RspLogic> node(options, std::move(*logic), source, sink,
+  runtime::Node<RspLogic> node(options, std::move(logic), source, sink,
                                hub_api::message_ops<hub_msgs::RspCommand::Wire>());
 
   // Every command queued up front (the queue allocates); the smart tool is not home, so every
@@ -70,7 +65,7 @@ TEST(RspCycle, AllocatesNothingInSteadyState) {
         // only its arrival is noted so that the test's own allocation stays out of the count.
         dock.input().note_arrival(clock.now().mono);
       }
-      if (i == 450) (*fake)->pressure_supply("main_air")->drop();
+      if (i == 450) fake_->pressure_supply("main_air")->drop();
       node.step(clock.now());
       clock.advance(milliseconds(10));
     }

@@ -44,7 +44,10 @@ using testing::QueueSource;
 // slow. Only reached when something is broken.
 constexpr Duration kMatchBound = std::chrono::seconds(20);
 
-TEST(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
+// The shipped board and hub file on the fake backend: RspLogicTest's set-up.
+class RspCycleWithDds : public testing::RspLogicTest {};
+
+TEST_F(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
   auto participant = dds::Participant::create(domain->config(), "rsp_alloc");
@@ -59,24 +62,16 @@ TEST(RspCycleWithDds, AddsNoAllocationToCyclonesOwnWrite) {
   const dds_entity_t writer_handle = writer->handle();
   hub_api::DdsStateSink<RspState> sink(std::move(*writer));
 
-  ManualClock clock;
-  auto board = hal::load_board(std::string(HUBRT_BOARDS_DIR) + "/host-sim.yaml");
-  ASSERT_TRUE(board) << board.error().message;
-  auto config = config::load_hub_config(std::string(HUBRT_HUBS_DIR) + "/rsp_ecu/rsp_ecu.yaml");
-  ASSERT_TRUE(config) << config.error().message;
-  auto settings = parse_rsp_settings(config->nodes.at(0));
-  ASSERT_TRUE(settings) << settings.error().message;
-  auto fake = hal::fake::FakeBackend::create(*board, clock);
-  ASSERT_TRUE(fake) << fake.error().message;
-  DockFeed dock(milliseconds(500));
-  auto logic = testing::make_rsp_logic(*settings, *board, **fake, dock.input(), clock.now().mono);
-  ASSERT_TRUE(logic) << logic.error().message;
+  ManualClock& clock = clock_;
+  DockFeed& dock = dock_;
+  RspLogic logic = make_logic();
+  ASSERT_FALSE(HasFailure());
   QueueSource source;
   runtime::NodeOptions options;
   options.name = "rsp";
   options.log = std::make_shared<spdlog::logger>("rsp", std::make_shared<spdlog::sinks::null_sink_mt>());
   runtime::Hub hub(runtime::HubOptions{"rsp_ecu", "rsp_alloc", milliseconds(10), options.log});
-  auto owned_node = std::make_unique<runtime::Node<RspLogic>>(options, std::move(*logic), source, sink,
+  auto owned_node = std::make_unique<runtime::Node<RspLogic>>(options, std::move(logic), source, sink,
                                                               hub_api::message_ops<RspCommand>());
   const runtime::Node<RspLogic>& node = *owned_node;
   hub.add_node(std::move(owned_node));
