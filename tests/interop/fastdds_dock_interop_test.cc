@@ -40,7 +40,8 @@ class FastDdsDockInteropTest : public ::testing::Test {
     auto domain = test_support::TestDomain::acquire();
     ASSERT_TRUE(domain) << domain.error().message;
     domain_.emplace(std::move(*domain));
-    auto planner = FastDdsDockPlanner::create(domain_->domain_id());
+    auto planner = FastDdsDockPlanner::create(domain_->domain_id(), DockNodeTypes::kCommandTopic,
+                                              DockNodeTypes::kStateTopic);
     ASSERT_TRUE(planner) << planner.error().message;
     planner_ = std::move(*planner);
     integration::HubProcessOptions options;  // the Dock ECU on the host-sim board (fake HAL)
