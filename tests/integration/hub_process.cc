@@ -11,6 +11,12 @@ Expected<HubProcess> HubProcess::start(const test_support::TestDomain& domain,
   std::vector<std::string> args = {"--board", options.board, "--hub", options.hub};
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
   test_support::Environment env = domain.env();
+  // A variable in extra_env replaces the domain's (e.g. a CYCLONEDDS_URI with security): a
+  // child's environment with the name twice would see only the first (getenv).
+  std::erase_if(env, [&options](const auto& entry) {
+    return std::any_of(options.extra_env.begin(), options.extra_env.end(),
+                       [&entry](const auto& extra) { return extra.first == entry.first; });
+  });
   env.insert(env.end(), options.extra_env.begin(), options.extra_env.end());
   env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
   auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);

@@ -58,12 +58,13 @@ fdds::DataReaderQos ros2_default_reader_qos() {
   return qos;
 }
 
-Expected<std::unique_ptr<LoopbackParticipant>> LoopbackParticipant::create(std::uint32_t domain_id,
-                                                                           const std::string& name) {
+Expected<std::unique_ptr<LoopbackParticipant>> LoopbackParticipant::create(
+    std::uint32_t domain_id, const std::string& name, const ParticipantProperties& properties) {
   std::unique_ptr<LoopbackParticipant> self(new LoopbackParticipant());
   auto* factory = fdds::DomainParticipantFactory::get_instance();
-  self->participant_ =
-      factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), loopback_participant_qos(name));
+  fdds::DomainParticipantQos qos = loopback_participant_qos(name);
+  for (const auto& [key, value] : properties) qos.properties().properties().emplace_back(key, value);
+  self->participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(domain_id), qos);
   if (self->participant_ == nullptr) {
     return make_error(ErrorCode::kUnavailable,
                       "Fast DDS refused the participant in domain " + std::to_string(domain_id));

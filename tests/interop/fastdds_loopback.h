@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -24,6 +26,9 @@ namespace hubrt::interop {
 // Which settings are needed and why: docs/interop.md.
 eprosima::fastdds::dds::DomainParticipantQos loopback_participant_qos(const std::string& name);
 
+// Participant properties (name, value), e.g. Fast DDS's "dds.sec.*" security settings.
+using ParticipantProperties = std::vector<std::pair<std::string, std::string>>;
+
 // ROS 2's default QoS for topics (reliable, volatile, keep last 10), as hubd uses them.
 eprosima::fastdds::dds::DataWriterQos ros2_default_writer_qos();
 eprosima::fastdds::dds::DataReaderQos ros2_default_reader_qos();
@@ -34,9 +39,12 @@ eprosima::fastdds::dds::DataReaderQos ros2_default_reader_qos();
 // entities from one thread.
 class LoopbackParticipant {
  public:
-  // Errors: kUnavailable when Fast DDS refuses the participant (e.g. no UDP socket).
+  // `properties` are added to the participant QoS (e.g. the security plugins' settings).
+  // Errors: kUnavailable when Fast DDS refuses the participant (no UDP socket, a security
+  // plugin that cannot load its certificates or documents: Fast DDS logs why).
   static Expected<std::unique_ptr<LoopbackParticipant>> create(std::uint32_t domain_id,
-                                                               const std::string& name);
+                                                               const std::string& name,
+                                                               const ParticipantProperties& properties = {});
   ~LoopbackParticipant();
   LoopbackParticipant(const LoopbackParticipant&) = delete;
   LoopbackParticipant& operator=(const LoopbackParticipant&) = delete;

@@ -42,11 +42,13 @@ class FastDdsPlanner {
   using ReceivedState = Received<State>;
 
   // `command_topic`, `state_topic`: DDS names, i.e. ROS 2's "rt/<topic>".
+  // `properties`: see LoopbackParticipant::create.
   static Expected<std::unique_ptr<FastDdsPlanner>> create(std::uint32_t domain_id, std::string command_topic,
-                                                          std::string state_topic) {
+                                                          std::string state_topic,
+                                                          const ParticipantProperties& properties = {}) {
     std::unique_ptr<FastDdsPlanner> self(
         new FastDdsPlanner(std::move(command_topic), std::move(state_topic)));
-    auto participant = LoopbackParticipant::create(domain_id, "fastdds-planner");
+    auto participant = LoopbackParticipant::create(domain_id, "fastdds-planner", properties);
     if (!participant) return std::move(participant).error();
     self->participant_ = std::move(*participant);
     auto writer = self->participant_->create_writer(
