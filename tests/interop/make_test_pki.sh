@@ -48,6 +48,8 @@ cat > governance.xml <<XML
 XML
 openssl smime -sign -in governance.xml -text -out governance.p7s -signer ca_cert.pem -inkey ca_key.pem
 
+# subject_name in RFC 2253 order (openssl -nameopt RFC2253): both vendors refuse the order openssl
+# prints by default ("C=DE, O=hubrt, CN=hub"), docs/interop.md.
 for id in hub planner; do
   cat > "permissions_${id}.xml" <<XML
 <?xml version="1.0" encoding="UTF-8"?>
