@@ -8,8 +8,7 @@
 // RTPSReader::~RTPSReader ... allocated by StatisticsReaderImpl::StatisticsReaderImpl"). It is in
 // Fast DDS, not in hubrt; ASan's suppression files cannot name this kind of report, so the check
 // is off for this one program. Every other ASan and UBSan check stays on.
-extern "C" const char* __asan_default_options();  // declared by no header: the sanitizer's hook
-
+// NOLINTNEXTLINE(bugprone-reserved-identifier): the name ASan looks up
 extern "C" const char* __asan_default_options() {
   return "new_delete_type_mismatch=0";
 }
@@ -21,8 +20,7 @@ extern "C" const char* __asan_default_options() {
 // SecurityManager::on_process_handshake"), with everything hanging off it (BN_MONT_CTX_new,
 // ASN1_STRING_set, ...). With the default fast unwinder those stacks end inside libcrypto
 // (built without frame pointers), so the library is what a suppression can name.
-extern "C" const char* __lsan_default_suppressions();  // declared by no header: the sanitizer's hook
-
+// NOLINTNEXTLINE(bugprone-reserved-identifier): the name LSan looks up
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:libcrypto.so\n";
 }
