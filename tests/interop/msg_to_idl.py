@@ -83,9 +83,9 @@ def parse_type(text, package, where):
     if not m:
         raise MsgError(f"{where}: cannot read the type '{text}'")
     base = m.group("base")
+    if m.group("strbound") and base not in ("string", "wstring"):
+        raise MsgError(f"{where}: only strings take a bound (<=N), not '{base}'")
     if base not in PRIMITIVES and base not in ("string", "wstring"):
-        if m.group("strbound"):
-            raise MsgError(f"{where}: only strings take a bound (<=N), not '{base}'")
         if "/" not in base:
             base = f"{package}/{base}"
         elif base.count("/") != 1:
