@@ -64,6 +64,16 @@ class MsgToIdlTest(unittest.TestCase):
         self.assertIn("pkg::msg::B b;", idl)
         self.assertIn("builtin_interfaces::msg::Time stamp;", idl)
 
+    def test_types_selects_the_named_messages_and_what_they_use(self):
+        pkg = self.package("pkg", {"A": "B b\n", "B": "bool ok\n", "C": "bool other\n"})
+        out = self.root / "out.idl"
+        self.assertEqual(msg_to_idl.main(["--out", str(out), "--types", "pkg/A", str(pkg)]), 0)
+        idl = out.read_text(encoding="utf-8")
+        self.assertIn("struct A", idl)
+        self.assertIn("struct B", idl)
+        self.assertNotIn("struct C", idl)
+        self.assertEqual(msg_to_idl.main(["--out", str(out), "--types", "pkg/Nope", str(pkg)]), 1)
+
     def test_an_empty_message_gets_rosidl_placeholder_member(self):
         status, idl = self.generate(self.package("pkg", {"Empty": "# nothing\n"}))
         self.assertEqual(status, 0)
