@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -117,8 +118,11 @@ TEST_F(FastDdsSecureInteropTest, AnAuthenticatedFastDdsPlannerReadsAndCommandsAS
                                  DockNodeTypes::kStateTopic, fastdds_security_properties(pki_, "planner"));
   ASSERT_TRUE(planner) << planner.error().message;
   planner_ = std::move(*planner);
+  const auto started = std::chrono::steady_clock::now();
   start_hub();
   ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
+  std::printf("secured: hubd start, handshake and match took %.2f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   auto first = planner_->next_state(kPatience);
   ASSERT_TRUE(first) << hub_->output();
   EXPECT_EQ(first->state.name(), "dock");
