@@ -46,6 +46,9 @@ fdds::DataWriterQos ros2_default_writer_qos() {
   qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = 10;
+  // Fast DDS turns data sharing on by itself for bounded types (ours): shared memory files in
+  // /dev/shm that a crashed test leaves behind, for a feature Cyclone does not speak.
+  qos.data_sharing().off();
   return qos;
 }
 
@@ -55,6 +58,7 @@ fdds::DataReaderQos ros2_default_reader_qos() {
   qos.durability().kind = fdds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
   qos.history().depth = 10;
+  qos.data_sharing().off();  // as for the writer
   return qos;
 }
 
