@@ -8,6 +8,10 @@
 #   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
 #                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
 #   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
+#   make net-test    the station over 5 network namespaces, unicast peers from hubctl net-config,
+#                    link faults (tests/net/run; root; reuses build/host-asan, builds what is missing)
+#   make netem-test  a hub and hubctl across a link with 10 % loss / 50 ms delay (sch_netem) in the
+#                    kernel tier's VM: heartbeat and echo figures (tests/net/netem-in-vm)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
@@ -15,9 +19,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,17p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -80,6 +84,17 @@ kernel-test: deps
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
+
+# The net tier: the programs of the ASan build (after `make test` nothing is rebuilt).
+net-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl hubsim
+	@tests/net/run --build-dir build/host-asan
+
+netem-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
+	@tests/net/netem-in-vm --build-dir build/host-asan
 
 board:
 	@test -n "$(BOARD)" || { echo "make board: say which, e.g. make board BOARD=rpi4-tool-ecu" >&2; exit 2; }

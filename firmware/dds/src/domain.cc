@@ -22,21 +22,24 @@ std::string max_sample_size_element() {
 
 }  // namespace
 
+std::string resource_bounds_elements_xml() {
+  // Each receive thread bump-allocates the messages it hands to a delivery queue through one
+  // receive buffer and replaces the buffer when less than a chunk (128 KiB) is left (Cyclone 0.10
+  // src/core/ddsi/src/q_radmin.c: nn_rbuf_alloc, commit_rmsg_chunk, nn_rbuf_release). With the
+  // default 1 MiB buffer a hub's RSS climbs ~900 kB per receive thread with discovery and command
+  // traffic, then falls back: 3 kB per planner reconnect for ~300 reconnects (docs/soak.md).
+  // 192 KiB keeps that tooth at ~64 kB.
+  return "<Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>" + max_sample_size_element();
+}
+
 std::string loopback_config_xml() {
   return "<CycloneDDS><Domain id=\"any\">"
          "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
          "<AllowMulticast>false</AllowMulticast></General>"
          "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
          "<MaxAutoParticipantIndex>32</MaxAutoParticipantIndex>"
-         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>"
-         // Each receive thread bump-allocates the messages it hands to a delivery queue through
-         // one receive buffer and replaces the buffer when less than a chunk (128 KiB) is left
-         // (Cyclone 0.10 src/core/ddsi/src/q_radmin.c: nn_rbuf_alloc, commit_rmsg_chunk,
-         // nn_rbuf_release). With the default 1 MiB buffer a hub's RSS climbs ~900 kB per
-         // receive thread with discovery and command traffic, then falls back: 3 kB per planner
-         // reconnect for ~300 reconnects (docs/soak.md). 192 KiB keeps that tooth at ~64 kB.
-         "<Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>" +
-         max_sample_size_element() + "</Domain></CycloneDDS>";
+         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>" +
+         resource_bounds_elements_xml() + "</Domain></CycloneDDS>";
 }
 
 std::string sample_bounds_config_xml() {

@@ -44,6 +44,9 @@ class ScenarioRunner::Impl {
           fmt::print(out_, "  {}  {:6.2f} s  [{:>3}] {}  {}\n",
                      result.ok ? "PASS" : (interrupted ? "STOP" : "FAIL"), took, i + 1, step.where,
                      step.describe());
+          // Each step's line as it ends, also into a file or a pipe (a log someone follows, a
+          // test waiting for a step: tests/net/run).
+          std::fflush(out_);
         }
         if (interrupted) {
           fmt::print(out_, "play: interrupted at step {} of {} ({}){} after {:.1f} s; {} step(s) passed\n",

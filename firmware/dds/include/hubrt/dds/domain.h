@@ -33,6 +33,12 @@ inline constexpr std::uint32_t kMaxDomainId = 232;
 // Valid for any domain id. Used by tests and by single-machine demos. Thread-safe.
 std::string loopback_config_xml();
 
+// What every configuration hubrt writes carries inside its <Domain>, whatever the network: a
+// 192 KiB receive buffer instead of 1 MiB (bounds the RSS saw-tooth of incoming traffic:
+// docs/soak.md) and sample_bounds_config_xml()'s Internal/MaxSampleSize. Used by
+// loopback_config_xml() and by `hubctl net-config` (a station on several hosts). Thread-safe.
+std::string resource_bounds_elements_xml();
+
 // The largest serialised sample a hubrt process sends or accepts. The largest legitimate one is
 // a hub-layout State with every error list full (Tool ECU: three lists of 16 entries of up to 191
 // bytes, ~9.4 KiB, ~12 KiB in all) or a /diagnostics array (~1.7 KiB per node): 64 KiB leaves
