@@ -388,6 +388,41 @@ def picture(results, path):
     return True
 
 
+def realtime_section(report, heartbeat, realtime):
+    """1 kHz with and without hubd --realtime (each beside its own bare loop in its run)."""
+    plain = next((e for e in (heartbeat or {}).get("rates", []) if e["rate_hz"] == 1000), None)
+    rt = next((e for e in (realtime or {}).get("rates", []) if e["rate_hz"] == 1000), None)
+    if rt is None:
+        report.aim("1 kHz without missed periods (hubd --realtime)", "not measured", False,
+                   "hubd --realtime was refused on this machine (no CAP_SYS_NICE / RLIMIT_RTPRIO), or did not run.")
+        return
+    lines = [
+        "## 1 kHz with and without `hubd --realtime`",
+        "",
+        "`hubrt_bench_heartbeat --rates 1000 --hubd-arg=--realtime`: the heartbeat measurement again, hubd under "
+        "SCHED_FIFO (priority 40) with its memory locked; the bare loop beside it stays an ordinary process.",
+        "",
+        "| hubd | States / expected | missed periods | stamp jitter p50 / p99 / max | arrival jitter p99 | "
+        "bare loop stamp jitter p99 (same run) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for label, entry in (("ordinary (SCHED_OTHER)", plain), ("--realtime (SCHED_FIFO 40, mlockall)", rt)):
+        if entry is None:
+            continue
+        h, r = entry["hub"], entry["raw"]
+        sj = h["stamp_jitter_ms"]
+        lines.append(f"| {label} | {h['states']} / {h['expected_states']} | {h.get('missed_periods', 0):.0f} | "
+                     f"{sj['p50']:.3f} / {sj['p99']:.3f} / {sj['max']:.3f} ms | "
+                     f"{h['arrival_jitter_ms']['p99']:.3f} ms | {r['stamp_jitter_ms']['p99']:.3f} ms |")
+    report.sections.append("\n".join(lines) + "\n")
+    missed = rt["hub"].get("missed_periods", 1)
+    report.aim("1 kHz without missed periods (hubd --realtime)",
+               f"{missed:.0f} missed, stamp jitter p99 {rt['hub']['stamp_jitter_ms']['p99']:.3f} ms, max "
+               f"{rt['hub']['stamp_jitter_ms']['max']:.3f} ms", missed == 0,
+               "hubd under SCHED_FIFO still missed periods: something of higher priority (interrupt threads, "
+               "RT throttling after 950 ms of every second) ran at the deadline.")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--results", required=True)
@@ -399,6 +434,7 @@ def main():
     cycle_section(report, load(args.results, "cycle.json"))
     echo_section(report, load(args.results, "echo.json"))
     heartbeat_section(report, load(args.results, "heartbeat.json"))
+    realtime_section(report, load(args.results, "heartbeat.json"), load(args.results, "heartbeat_realtime.json"))
     startup_section(report, load(args.results, "startup.json"))
     scale_section(report, load(args.results, "scale.json"))
     drew = picture(args.results, args.picture)
