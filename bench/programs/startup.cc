@@ -89,7 +89,7 @@ struct Series {
 
 Expected<nlohmann::ordered_json> measure(dds_entity_t hub_reader, dds_entity_t hub_waitset,
                                          dds_entity_t raw_reader_, dds_entity_t raw_waitset_, double rate,
-                                         std::size_t runs) {
+                                         std::size_t runs, const std::vector<std::string>& hubd_args) {
   Series hub;
   Series raw;
   const std::string rate_text = fmt::format("{}", rate);
@@ -97,7 +97,9 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t hub_reader, dds_entity_t h
       fmt::format("start -> first State at {} Hz: {} runs each of hubd and the raw program", rate, runs));
   for (std::size_t i = 0; i < runs; ++i) {
     auto h = time_first_state(hub_reader, hub_waitset, [&] {
-      return start_hubd({"--hub", "dock_ecu", "--rate", rate_text});
+      std::vector<std::string> args = {"--hub", "dock_ecu", "--rate", rate_text};
+      args.insert(args.end(), hubd_args.begin(), hubd_args.end());
+      return start_hubd(args);
     });
     if (!h) return make_error(h.error().code, "hubd: " + h.error().message);
     hub.add(*h);
@@ -110,6 +112,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t hub_reader, dds_entity_t h
   nlohmann::ordered_json result;
   result["rate_hz"] = rate;
   result["runs"] = runs;
+  result["hubd_args"] = hubd_args;
   result["hub"] = hub.json();
   result["raw"] = raw.json();
   const auto hub_p50 = summary_of(hub.after_ms).p50;
@@ -120,7 +123,8 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t hub_reader, dds_entity_t h
   return result;
 }
 
-int run(const std::string& out, std::size_t runs, const std::vector<double>& rates) {
+int run(const std::string& out, std::size_t runs, const std::vector<double>& rates,
+        const std::vector<std::string>& hubd_args) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
   auto participant = raw_participant(domain->domain_id());
@@ -134,7 +138,7 @@ int run(const std::string& out, std::size_t runs, const std::vector<double>& rat
   nlohmann::ordered_json result;
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
-    auto measured = measure(*hub_reader, *hub_waitset, *raw_reader_, *raw_waitset_, rate, runs);
+    auto measured = measure(*hub_reader, *hub_waitset, *raw_reader_, *raw_waitset_, rate, runs, hubd_args);
     if (!measured) return fmt::print(stderr, "{}\n", measured.error().message), 1;
     result["rates"].push_back(std::move(*measured));
   }
@@ -154,6 +158,11 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "Result file (JSON)");
   app.add_option("--runs", runs, "Starts of each, per rate");
   app.add_option("--rates", rates, "Rates in Hz (the shipped Dock ECU runs at 10)");
+  std::vector<std::string> hubd_args;
+  app.add_option(
+      "--hubd-arg", hubd_args,
+      "One more argument for hubd (repeatable), e.g. --hubd-arg=--twin-check-ms=0 to see the start-up "
+      "without the twin check's discovery window");
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, runs, rates);
+  return hubrt::bench::run(out, runs, rates, hubd_args);
 }

@@ -1,5 +1,6 @@
 #include "realtime.h"
 
+#include <pthread.h>
 #include <sched.h>
 
 #include <cerrno>
@@ -48,6 +49,15 @@ Expected<void> enter_realtime(int priority) {
                     "--realtime: a sanitizer build (ASan/TSan) cannot lock its memory (its shadow "
                     "memory is terabytes); use a release build");
 #endif
+  // Locked memory is resident memory: every thread started from here on (Cyclone's, a Modbus
+  // worker) would lock its whole stack, 8 MiB each with glibc's default (RLIMIT_STACK), about
+  // 65 MB for a hub's threads. pthread_setattr_default_np(3) sets the size new threads get when
+  // their creator asks for none, as Cyclone's ddsrt_thread_create does unless configured.
+  pthread_attr_t attr;
+  if (pthread_attr_init(&attr) == 0) {
+    if (pthread_attr_setstacksize(&attr, kRealtimeThreadStackBytes) == 0) pthread_setattr_default_np(&attr);
+    pthread_attr_destroy(&attr);
+  }
   // mlockall(2): MCL_FUTURE also locks what is mapped later (stacks of threads started after
   // this, heap growth); without CAP_IPC_LOCK everything locked must fit RLIMIT_MEMLOCK.
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
