@@ -1,10 +1,12 @@
 // Start -> first State: from spawning hubd to its first State arriving at a subscriber that was
 // already listening, side by side with a raw Cyclone program (the bare heartbeat: create a
 // participant and a writer, write at the same rate). Both include process start, DDS start-up and
-// discovery; the hub adds loading its board and hub files and building its nodes. States written
-// before discovery completes reach nobody (volatile durability), so the first one received is the
-// first written after it: at 10 Hz that rounds the figure up to the next 100 ms period, at 1 kHz it
-// shows when the writer became reachable. Both rates are measured; runs alternate hub and raw.
+// discovery; the hub adds loading its board and hub files, its twin check's discovery window and
+// building its nodes. States written before discovery completes reach nobody (volatile
+// durability), so the raw writer's first one received is the first written after it: at 10 Hz that
+// rounds its figure up to the next 100 ms period. The hub publishes its State at once when the
+// subscriber's reader matches, so its figure is when it became reachable at every rate. Both rates
+// are measured; runs alternate hub and raw.
 #include <ctime>
 
 #include <CLI/CLI.hpp>
