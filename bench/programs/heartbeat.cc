@@ -103,9 +103,11 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
 }
 
 Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, double window_s,
-                                         std::ofstream& periods) {
+                                         std::ofstream& periods, const std::vector<std::string>& hubd_args) {
   const double period = 1.0 / rate;
-  auto hub = start_hubd({"--hub", "dock_ecu", "--rate", fmt::format("{}", rate)});
+  std::vector<std::string> args = {"--hub", "dock_ecu", "--rate", fmt::format("{}", rate)};
+  args.insert(args.end(), hubd_args.begin(), hubd_args.end());
+  auto hub = start_hubd(args);
   if (!hub) return std::move(hub).error();
   auto raw = start_raw_peer({"heartbeat", "--rate", fmt::format("{}", rate)});
   if (!raw) return std::move(raw).error();
@@ -154,6 +156,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   nlohmann::ordered_json out;
   out["rate_hz"] = rate;
   out["window_s"] = window_s;
+  out["hubd_args"] = hubd_args;
   out["hub"] = describe(streams[0], period, window_s, *hub_before, *hub_after, cpu_window, periods, rate);
   out["raw"] = describe(streams[1], period, window_s, *raw_before, *raw_after, cpu_window, periods, rate);
   const auto ratio = [&](const char* series, const char* stat) {
@@ -170,7 +173,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
 }
 
 int run(const std::string& out_file, const std::string& periods_file, const std::vector<double>& rates,
-        double window_s) {
+        double window_s, const std::vector<std::string>& hubd_args) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
   auto participant = raw_participant(domain->domain_id());
@@ -181,7 +184,7 @@ int run(const std::string& out_file, const std::string& periods_file, const std:
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
     progress(fmt::format("heartbeat: hub and bare clock_nanosleep loop at {} Hz for {} s", rate, window_s));
-    auto measured = measure(*participant, rate, window_s, periods);
+    auto measured = measure(*participant, rate, window_s, periods, hubd_args);
     if (!measured) return fmt::print(stderr, "{}\n", measured.error().message), 1;
     progress(
         fmt::format("heartbeat {} Hz: stamp jitter p99 hub {:.3f} ms, raw {:.3f} ms; CPU hub {:.2f} %, raw "
@@ -210,6 +213,9 @@ int main(int argc, char** argv) {
   app.add_option("--periods", periods, "Every period measured (CSV), for the jitter picture");
   app.add_option("--rates", rates, "Rates in Hz");
   app.add_option("--seconds", window_s, "Measuring window per rate");
+  std::vector<std::string> hubd_args;
+  app.add_option("--hubd-arg", hubd_args,
+                 "One more argument for hubd (repeatable), e.g. --hubd-arg=--realtime");
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, periods, rates, window_s);
+  return hubrt::bench::run(out, periods, rates, window_s, hubd_args);
 }

@@ -9,15 +9,43 @@
 #include "matched_count.h"
 
 namespace hubrt::dds {
+namespace {
+
+struct ListenerDeleter {
+  void operator()(dds_listener_t* listener) const noexcept { dds_delete_listener(listener); }
+};
+
+}  // namespace
+
+// Runs on Cyclone's discovery thread, under the writer's observer lock (dds_writer.c,
+// dds_writer_status_cb -> status_cb_publication_matched in Cyclone 0.10): must not block.
+// update_publication_matched() counts an added reader in total_count_change and a lost one only
+// in current_count (and current_count_change, negative); the listener resets the *_change fields
+// after each call (dds_lset_publication_matched: reset_on_invoke), so total_count_change is
+// the number of readers added since the last call.
+void UntypedWriter::on_publication_matched(dds_entity_t /*writer*/,
+                                           const dds_publication_matched_status_t status,
+                                           void* arg) noexcept {
+  auto* matches = static_cast<MatchWatch*>(arg);
+  if (status.total_count_change == 0) return;  // a reader went away
+  matches->new_readers.fetch_add(status.total_count_change);
+  if (matches->callback) matches->callback();
+}
 
 Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, const UntypedTopic& topic,
-                                              const Qos& qos) {
-  const dds_entity_t handle = dds_create_writer(participant.handle(), topic.handle(), qos.get(), nullptr);
+                                              const Qos& qos, ReaderMatchedCallback on_reader_matched) {
+  auto matches = std::make_unique<MatchWatch>();
+  matches->callback = std::move(on_reader_matched);
+  const std::unique_ptr<dds_listener_t, ListenerDeleter> listener(dds_create_listener(matches.get()));
+  dds_lset_publication_matched(listener.get(), &UntypedWriter::on_publication_matched);
+  // Cyclone copies the listener, so ours can go when this returns.
+  const dds_entity_t handle =
+      dds_create_writer(participant.handle(), topic.handle(), qos.get(), listener.get());
   if (handle < 0) {
     return dds_error(
         handle, "create writer on '" + topic.dds_name() + "' in domain " + std::to_string(topic.domain_id()));
   }
-  UntypedWriter writer(EntityHandle(handle), topic.dds_name());
+  UntypedWriter writer(std::move(matches), EntityHandle(handle), topic.dds_name());
   // A keyless topic has one instance. Registering it now keeps Cyclone's instance entry alive
   // for the writer's lifetime; otherwise, while no reader holds it, every write() creates and
   // garbage-collects it again (measured: about 3 heap allocations per write).

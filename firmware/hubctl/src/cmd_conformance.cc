@@ -129,9 +129,12 @@ Expected<std::vector<StateTopic>> select_topics(const dds::Participant& particip
       last_seen = names;
       stable_since = steady_seconds();
     }
-    if (all && !seen->empty() && steady_seconds() - stable_since >= options.wait_s) {
-      for (const auto& [name, topic] : *seen) chosen.push_back(topic);
-      return chosen;
+    if (all && steady_seconds() - stable_since >= options.wait_s) {
+      // Every hub's State topic: not the simulation's (hubsim's station State is no hub).
+      for (const auto& [name, topic] : *seen) {
+        if (is_hub_state_topic(name)) chosen.push_back(topic);
+      }
+      if (!chosen.empty()) return chosen;
     }
     if (!all && missing.empty()) {
       std::sort(chosen.begin(), chosen.end(),

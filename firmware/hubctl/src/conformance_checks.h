@@ -52,19 +52,26 @@ CheckResult passed(std::string id, std::string title, std::string value, std::st
 
 // --- heartbeat (no commands) --------------------------------------------------------------------
 
+// The hub is judged on its own stamps: header.stamp is when the hub woke for the cycle, so the
+// periods between stamps are the hub's schedule, whatever happened to the States on their way and
+// to the receiver (a stalled or loaded host running hubctl delays arrivals in bunches, which says
+// nothing about the hub). What the receiver saw is measured too and reported beside it, unjudged.
 struct HeartbeatFigures {
   std::size_t states = 0;
-  double rate_hz = 0;
+  double rate_hz = 0;  // from the stamps of the first and last State
   double rate_error_pct = 0;
-  Summary jitter_ms;  // |arrival period - nominal period|
-  Summary period_ms;  // arrival periods as they are
+  Summary jitter_ms;          // |stamp period - nominal period|: the hub's wake-ups (judged)
+  Summary period_ms;          // stamp periods as they are
+  Summary arrival_jitter_ms;  // |arrival period - nominal period|: hub + delivery + receiver (reported)
+  Summary arrival_period_ms;  // arrival periods as they are
 };
 
-// Rate from the arrival times of the first and last State, jitter from every consecutive pair.
-// Needs at least two States (else a zero result with states < 2).
+// Rate from the stamps of the first and last State, jitter from every consecutive pair (of stamps,
+// and of arrivals). Needs at least two States (else a zero result with states < 2).
 HeartbeatFigures measure_heartbeat(std::span<const Observation> window, double period_s);
 
-// rate_error, jitter_p50, jitter_p99, jitter_max.
+// rate_error, jitter_p50, jitter_p99, jitter_max (judged, on stamps); arrival_jitter_p50,
+// arrival_jitter_p99, arrival_jitter_max (Verdict::kInfo: measured at the receiver).
 std::vector<CheckResult> check_heartbeat(const HeartbeatFigures& figures, double period_s,
                                          const Thresholds& thresholds);
 

@@ -32,6 +32,10 @@ bool is_state_type(const msgs::TypeInfo& type) noexcept {
   return echo != nullptr && echo->kind == msgs::FieldKind::kStruct && field(type, "fresh_msg") != nullptr;
 }
 
+bool is_hub_state_topic(std::string_view ros_topic) noexcept {
+  return !ros_topic.starts_with("/sim/");
+}
+
 bool is_hub_state_type(const msgs::TypeInfo& type) noexcept {
   if (!is_state_type(type)) return false;
   for (const msgs::FieldInfo& f : type.fields) {

@@ -50,6 +50,11 @@ struct Target {
 
 // A type with the common State fields (echo, fresh_msg).
 bool is_state_type(const msgs::TypeInfo& type) noexcept;
+// Whether a State topic (ROS name) can be a hub's: the simulation's own topics live under /sim/
+// (firmware/sim: the sim bridge's /sim/<hub>/signals, hubsim's world on /sim/station/state, which
+// follows the Command/State contract but is no hub), and a suite run over "every State topic"
+// (no --hub, no --topic) leaves them out.
+bool is_hub_state_topic(std::string_view ros_topic) noexcept;
 // The hub layout's State: one of its fields is itself a State.
 bool is_hub_state_type(const msgs::TypeInfo& type) noexcept;
 

@@ -20,12 +20,13 @@ constexpr std::array<ThresholdSpec, 12> kSpecs{{
      "A planner waiting for a hub should hear it within a second of starting it, DDS discovery in both "
      "directions included. DESIGN.md section 8 aims at 50 ms; `make bench` measures that."},
     {"rate_error_pct", &Thresholds::rate_error_pct, 1.0, "%",
-     "A cycle on absolute deadlines publishes N States in N periods. Over a 5 s window the arrival jitter "
-     "of the first and last State moves the estimate by well under 0.1 %, so 1 % fails only a hub whose "
-     "timer drifts or that skips or adds cycles."},
+     "A cycle on absolute deadlines publishes N States in N periods. The rate comes from the hub's "
+     "stamps of the first and last State of a 5 s window (a late wake-up moves it by well under 0.1 %), "
+     "so 1 % fails only a hub whose timer drifts or that skips or adds cycles."},
     {"jitter_p50_pct", &Thresholds::jitter_p50_pct, 10, "% of period",
-     "Half of all periods within 10 % of nominal: a timer-driven cycle on an idle host is within a few "
-     "percent; a hub that sleeps relative to its last wake-up drifts by its own execution time."},
+     "Half of all periods (between the hub's stamps: when it woke) within 10 % of nominal: a timer-driven "
+     "cycle on an idle host is within a few percent; a hub that sleeps relative to its last wake-up "
+     "drifts by its own execution time. Arrival jitter at hubctl is reported beside it, not judged."},
     {"jitter_p99_pct", &Thresholds::jitter_p99_pct, 25, "% of period",
      "99 % of periods within a quarter period: at 10 Hz that is 25 ms, far beyond scheduling noise, yet "
      "a hub doing blocking device I/O in its cycle exceeds it."},

@@ -143,6 +143,15 @@ TEST(Target, TopicNamesSplitIntoNamespaceHubAndNode) {
   EXPECT_FALSE(split_state_topic("/dock_ecu/dock/status", TargetLayout::kNodeType));
 }
 
+// Issue 16, point 7: `hubctl conformance` without --hub tested hubsim's world State as a hub.
+TEST(Target, TheSimulationsStateTopicsAreNoHubs) {
+  EXPECT_FALSE(is_hub_state_topic("/sim/station/state"));
+  EXPECT_FALSE(is_hub_state_topic("/sim/dock_ecu/state"));
+  EXPECT_TRUE(is_hub_state_topic("/dock_ecu/dock/state"));
+  EXPECT_TRUE(is_hub_state_topic("/station1/dock_ecu/dock/state"));
+  EXPECT_TRUE(is_hub_state_topic("/simulator_hub/state")) << "only the /sim/ namespace is the simulation's";
+}
+
 TEST(Target, ResolvedFromDiagnosticsAndTheProfile) {
   const msgs::TypeInfo& state = msgs::type_info_of<hub_msgs_msg_dds__DockState_>();
   EXPECT_TRUE(is_state_type(state));

@@ -24,6 +24,7 @@
 #include "config_files.h"
 #include "crash_handlers.h"
 #include "logging.h"
+#include "realtime.h"
 #include "safe_outputs.h"
 #include "systemd_notifier.h"
 
@@ -42,6 +43,8 @@ struct Options {
   std::string log_level = "info";
   bool check_only = false;
   bool safe_outputs = false;
+  bool realtime = false;
+  int realtime_priority = kDefaultRealtimePriority;
   std::uint32_t twin_check_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(assembly::kDefaultTwinCheckWindow).count());
 };
@@ -141,6 +144,13 @@ int run(const Options& options) {
     return exit_codes::kOk;
   }
 
+  // Before any thread exists, so that every thread hubd starts inherits the policy; after the
+  // checks above, so that neither --check nor --safe-outputs ever runs real-time.
+  if (options.realtime) {
+    if (auto realtime = enter_realtime(options.realtime_priority); !realtime)
+      return fail(realtime.error().message, kExitConfig);
+    spdlog::info("real-time: SCHED_FIFO at priority {}, memory locked", options.realtime_priority);
+  }
   // Before any thread exists: blocks the stop signals for every thread DDS will start.
   auto runner = runtime::CycleRunner::create();
   if (!runner) return fail(runner.error().message, kExitRuntime);
@@ -220,6 +230,14 @@ int main(int argc, char** argv) {
                  "Discovery window at start-up in which another hub publishing this hub's States makes "
                  "this one refuse to run (0: no start-up check; a twin is still caught while running)")
       ->check(CLI::Range(0, 60000));
+  app.add_flag("--realtime", options.realtime,
+               "Run the cycle (and every thread of hubd) under SCHED_FIFO and lock its memory "
+               "(mlockall); refused with exit status 2 where not permitted (needs CAP_SYS_NICE or "
+               "LimitRTPRIO=, and CAP_IPC_LOCK or LimitMEMLOCK=)");
+  app.add_option("--realtime-priority", options.realtime_priority,
+                 "SCHED_FIFO priority for --realtime (1-99; default 40, below the kernel's threaded "
+                 "interrupts at 50)")
+      ->check(CLI::Range(1, 99));
   auto* check =
       app.add_flag("--check", options.check_only,
                    "Load and validate the board and hub files and the hub's needs against the board, "

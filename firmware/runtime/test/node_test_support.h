@@ -4,6 +4,7 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hubrt/runtime/ports.h"
@@ -81,6 +82,9 @@ class CountingSink final : public StateSink<ValveState> {
     last_sec = state.header.stamp.sec;
     return Status::ok();
   }
+  // A reader "matches" when a test sets new_reader; the node consumes it in its next step.
+  bool take_new_reader() noexcept override { return std::exchange(new_reader, false); }
+  bool new_reader = false;
   std::uint64_t count = 0;
   std::uint64_t last_seq = 0;
   std::int32_t last_sec = 0;

@@ -1,7 +1,10 @@
 // Publishing samples: one writer per topic, writing from caller-owned memory.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 
 #include <dds/dds.h>
@@ -15,17 +18,25 @@
 
 namespace hubrt::dds {
 
+// Called on a Cyclone thread (discovery) when a new reader matched the writer. Same contract as
+// DataAvailableCallback: no blocking, no throwing, no deleting the writer; meant to wake a cycle.
+using ReaderMatchedCallback = std::function<void()>;
+
 // A writer for a type known by its descriptor only. Move-only; dds_delete() on destruction.
-// Thread-safety: write() and matched_readers() may be called from any thread (Cyclone
-// serialises); create/move/destroy must not race with them.
+// Thread-safety: write(), matched_readers() and take_new_readers() may be called from any thread
+// (Cyclone serialises; the count is atomic); create/move/destroy must not race with them.
 class UntypedWriter {
  public:
   // For a keyless topic (all ROS 2 messages) the single instance is registered at once, so that
   // write() does not make Cyclone allocate while no reader is matched.
+  // `on_reader_matched` (optional) is installed with the writer, as its publication-matched
+  // listener, so that no match is missed between creation and installation; every new match is
+  // counted for take_new_readers() whether or not a callback is given.
   // Errors: Cyclone's refusal as "create writer on 'rt/...' in domain N: DDS_RETCODE_...", e.g.
   // for a deleted participant or an inconsistent QoS.
   static Expected<UntypedWriter> create(const Participant& participant, const UntypedTopic& topic,
-                                        const Qos& qos = Qos::ros2_default());
+                                        const Qos& qos = Qos::ros2_default(),
+                                        ReaderMatchedCallback on_reader_matched = {});
 
   // Serialises and sends `sample` (desc->m_size bytes of the topic's type). Allocates nothing
   // on our side; Cyclone 0.10 does, internally: 2 allocations per write of a sample that
@@ -40,6 +51,12 @@ class UntypedWriter {
 
   // Number of readers currently matched. Errors: Cyclone's code (deleted writer).
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept;
+
+  // Readers that matched since the last call (0 if none), and resets the count. A reader that
+  // matches is reachable from then on: a sample written after this returned a non-zero count
+  // reaches it (reliable QoS: the writer keeps it for that reader until acknowledged).
+  // Allocation-free, lock-free: for the cycle.
+  std::uint64_t take_new_readers() noexcept { return matches_->new_readers.exchange(0); }
 
   // Waits until at least `count` readers are matched, polling with a deadline; for tests and
   // tools, not for the cycle. Errors: kTimeout naming the topic and how many matched.
@@ -56,9 +73,21 @@ class UntypedWriter {
   [[nodiscard]] const std::string& topic_name() const noexcept { return topic_name_; }
 
  private:
-  UntypedWriter(EntityHandle handle, std::string topic_name) noexcept
-      : handle_(std::move(handle)), topic_name_(std::move(topic_name)) {}
+  static void on_publication_matched(dds_entity_t writer, dds_publication_matched_status_t status,
+                                     void* arg) noexcept;
 
+  // What the publication-matched listener updates; heap-held so that it stays in place when the
+  // writer moves (Cyclone keeps a pointer to it until the writer is deleted).
+  struct MatchWatch {
+    std::atomic<std::uint64_t> new_readers{0};
+    ReaderMatchedCallback callback;
+  };
+
+  UntypedWriter(std::unique_ptr<MatchWatch> matches, EntityHandle handle, std::string topic_name) noexcept
+      : matches_(std::move(matches)), handle_(std::move(handle)), topic_name_(std::move(topic_name)) {}
+
+  // Declared before handle_ so that it is destroyed after the writer it is the listener of.
+  std::unique_ptr<MatchWatch> matches_;
   EntityHandle handle_;
   std::string topic_name_;
 };
@@ -69,8 +98,9 @@ class Writer {
  public:
   // Errors: as UntypedWriter::create.
   static Expected<Writer> create(const Participant& participant, const Topic<T>& topic,
-                                 const Qos& qos = Qos::ros2_default()) {
-    auto writer = UntypedWriter::create(participant, topic.untyped(), qos);
+                                 const Qos& qos = Qos::ros2_default(),
+                                 ReaderMatchedCallback on_reader_matched = {}) {
+    auto writer = UntypedWriter::create(participant, topic.untyped(), qos, std::move(on_reader_matched));
     if (!writer) return std::move(writer).error();
     return Writer(std::move(*writer));
   }
@@ -78,6 +108,7 @@ class Writer {
   // As UntypedWriter::write; `sample` may point its strings into caller-owned fixed buffers.
   Status write(const T& sample) noexcept { return writer_.write(&sample); }
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept { return writer_.matched_readers(); }
+  std::uint64_t take_new_readers() noexcept { return writer_.take_new_readers(); }
   Expected<void> wait_for_readers(std::uint32_t count, Duration timeout) const {
     return writer_.wait_for_readers(count, timeout);
   }

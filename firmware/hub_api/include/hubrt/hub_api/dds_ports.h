@@ -36,6 +36,7 @@ class DdsStateSink final : public runtime::StateSink<State> {
  public:
   explicit DdsStateSink(dds::Writer<State> writer) : writer_(std::move(writer)) {}
   Status publish(const State& state) noexcept override { return writer_.write(state); }
+  bool take_new_reader() noexcept override { return writer_.take_new_readers() > 0; }
   [[nodiscard]] const dds::Writer<State>& writer() const noexcept { return writer_; }
 
  private:

@@ -232,7 +232,9 @@ class NodeWiring {
     auto state_topic =
         dds::Topic<HubState>::create(context.participant, hub_state_topic(ns, context.config.name));
     if (!state_topic) return std::move(state_topic).error();
-    auto writer = dds::Writer<HubState>::create(context.participant, *state_topic);
+    // A new reader of the hub State wakes the cycle, which publishes it at once (Node::publish_if_due).
+    auto writer = dds::Writer<HubState>::create(context.participant, *state_topic, dds::Qos::ros2_default(),
+                                                [waker] { waker.wake(); });
     if (!writer) return std::move(writer).error();
     wiring.stage_ = std::make_unique<detail::HubLayoutStage<HubTypes>>(
         std::move(*command_topic), std::move(*state_topic), DdsCommandSource<HubCommand>(std::move(*reader)),

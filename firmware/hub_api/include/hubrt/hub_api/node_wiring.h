@@ -56,7 +56,11 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   auto state_topic = dds::Topic<State>::create(
       context.participant, node_state_topic(context.config.ros_namespace, context.config.name, node.name));
   if (!state_topic) return fail(state_topic.error());
-  auto writer = dds::Writer<State>::create(context.participant, *state_topic);
+  // A new reader of the State wakes the cycle, which publishes it at once (Node::publish_if_due):
+  // a subscriber that was waiting for the hub gets a State as soon as discovery completes, not
+  // one period later (the States written before that reached nobody).
+  auto writer = dds::Writer<State>::create(context.participant, *state_topic, dds::Qos::ros2_default(),
+                                           [waker] { waker.wake(); });
   if (!writer) return fail(writer.error());
 
   auto ports = std::make_shared<NodeTypePorts<Logic>>(NodeTypePorts<Logic>{

@@ -93,8 +93,11 @@ class NodeBase {
   // The heartbeat: stamps and publishes the State built by the last step, always.
   virtual Status publish(const Instant& now) noexcept = 0;
   // After a step between heartbeats: stamps and publishes the State when a command took effect
-  // in it (`took_effect`), or a change held back earlier still waits, and the node's
+  // in it (`took_effect`), a new reader of the State matched (StateSink::take_new_reader, taken
+  // in the step like a command), or a change held back earlier still waits, and the node's
   // ImmediateStateBudget allows it now; otherwise holds the change back for the next State.
+  // A State for a new reader counts in the budget like a command's (a peer creating readers in a
+  // loop cannot make the hub publish more than a command flood could).
   virtual Status publish_if_due(const Instant& now, bool took_effect) noexcept = 0;
   // The hub is stopping: drives the outputs safe; the node's lifecycle goes to safe.
   virtual void enter_safe_state() noexcept = 0;
@@ -174,6 +177,7 @@ class Node final : public NodeBase {
   // runs the logic (given the command in force only while operational), writes outputs.
   bool advance(const Instant& now) noexcept {
     const bool took_effect = take_commands(now.mono);
+    new_reader_ |= sink_.take_new_reader();
     if (tracker_.check(now.mono) == CommandTracker::Watchdog::kTripped) {
       options_.log->warn("{}: no valid command for more than {:.3f} s: outputs to safe state", options_.name,
                          to_seconds(options_.command_timeout));
@@ -217,11 +221,14 @@ class Node final : public NodeBase {
 
   Status publish(const Instant& now) noexcept override {
     budget_.on_heartbeat();
+    new_reader_ = false;  // the heartbeat reaches the new reader too
     return stamp_and_publish(now);
   }
 
   Status publish_if_due(const Instant& now, bool took_effect) noexcept override {
-    if (!budget_.publish_now(now.mono, took_effect)) return Status::ok();
+    const bool changed = took_effect || new_reader_;
+    new_reader_ = false;  // a State the budget holds back goes out with the next one
+    if (!budget_.publish_now(now.mono, changed)) return Status::ok();
     return stamp_and_publish(now);
   }
 
@@ -398,6 +405,7 @@ class Node final : public NodeBase {
   bool has_rejection_ = false;
   bool stopping_ = false;              // enter_safe_state() was called: safe for good
   bool transition_to_report_ = false;  // advance() changed the lifecycle; rebuild_state() logs it
+  bool new_reader_ = false;            // a reader of the State matched since it was last published
   std::uint64_t published_ = 0;
   std::uint64_t rejected_ = 0;
 };

@@ -23,6 +23,11 @@ class StateSink {
   virtual ~StateSink() = default;
   // Publishes (or hands on) one State. Must not keep pointers into `state` after returning.
   virtual Status publish(const State& state) noexcept = 0;
+  // True when a new reader of these States appeared since the last call (the transport saw it
+  // match; the DDS sink's publication-matched listener): the node then publishes its State at
+  // once, so that the reader need not wait for the next heartbeat. Consumes the event; allocation-
+  // free. A sink nobody reads directly (the hub layout's collected node States) never has one.
+  virtual bool take_new_reader() noexcept { return false; }
 };
 
 }  // namespace hubrt::runtime
