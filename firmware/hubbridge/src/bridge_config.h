@@ -23,7 +23,7 @@ struct BridgeConfig {
 };
 
 struct BridgeFile {
-  std::string name;       // the process on /diagnostics ("hubbridge: <name>") and its ROS 1 node
+  std::string name;       // the hub it stands for: DDS participant name, ROS 1 node, /diagnostics prefix
   std::string msg_dir;    // ROS 2 interface tree (contains hub_msgs/msg/*.msg), resolved
   double silent_after_s;  // ros1_to_dds: no sample for this long -> "silent" on /diagnostics
   std::vector<BridgeConfig> bridges;

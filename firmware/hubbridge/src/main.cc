@@ -35,6 +35,7 @@ struct Options {
   bool check = false;
   std::string msg_dir;
   std::string write_ros1_msgs;
+  bool md5sums = false;
 };
 
 // rosmaster's process id (the getPid call of the ROS Master API), or 0 when it does not answer:
@@ -77,6 +78,18 @@ int run(const Options& options) {
     }
     return write_ros1_msgs(*messages, options.write_ros1_msgs);
   }
+  if (options.md5sums) {
+    auto messages = ros1::load_ros2_tree_as_ros1(options.msg_dir);
+    if (!messages) {
+      fmt::print(stderr, "hubbridge: {}\n", messages.error().message);
+      return exit_codes::kUsage;
+    }
+    for (const auto& [name, message] : *messages) {
+      auto md5 = ros1::md5sum(*messages, name);
+      fmt::print("{} {}\n", name, md5 ? *md5 : md5.error().message);
+    }
+    return exit_codes::kOk;
+  }
   auto file = load_bridge_file(options.file);
   if (!file) {
     fmt::print(stderr, "hubbridge: {}\n", file.error().message);
@@ -94,7 +107,8 @@ int run(const Options& options) {
   }
   if (options.domain) config->domain_id = *options.domain;
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
-  auto participant = dds::Participant::create(*config, "hubbridge " + file->name);
+  // Named as the hub it stands for: tools find a hub by its participant name (hubctl play, list).
+  auto participant = dds::Participant::create(*config, file->name);
   if (!participant) {
     fmt::print(stderr, "hubbridge: {}\n", participant.error().message);
     return exit_codes::kFailure;
@@ -171,14 +185,17 @@ int main(int argc, char** argv) {
   app.add_option("--msg-dir", options.msg_dir, "ROS 2 interface tree (default: the file's msg_dir)");
   app.add_option("--write-ros1-msgs", options.write_ros1_msgs,
                  "Write the ROS 1 .msg files of every message in --msg-dir into this directory, then exit");
+  app.add_flag("--md5sums", options.md5sums,
+               "Print the ROS 1 md5sum of every message in --msg-dir, then exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? hubrt::exit_codes::kOk : hubrt::exit_codes::kUsage;
   }
-  if (options.file.empty() == options.write_ros1_msgs.empty() ||
-      (!options.write_ros1_msgs.empty() && options.msg_dir.empty())) {
-    fmt::print(stderr, "hubbridge: give a bridge file, or --write-ros1-msgs DIR with --msg-dir\n");
+  const bool tool_mode = !options.write_ros1_msgs.empty() || options.md5sums;
+  if (options.file.empty() == !tool_mode || (tool_mode && options.msg_dir.empty())) {
+    fmt::print(stderr,
+               "hubbridge: give a bridge file, or --write-ros1-msgs DIR / --md5sums with --msg-dir\n");
     return hubrt::exit_codes::kUsage;
   }
   return hubrt::hubbridge::run(options);
