@@ -100,18 +100,7 @@ void BridgeRunner::register_ros1(ros::NodeHandle& node) {
     Bridge& bridge = *bridge_ptr;
     const auto queue = static_cast<std::uint32_t>(bridge.config.depth);
     if (bridge.config.direction == Direction::kRos1ToDds) {
-      // ShapeShifter subscribes with md5sum "*", so roscpp connects to any publisher of the topic
-      // and hands over the raw bytes with the publisher's connection header
-      // (topic_tools/shape_shifter.h); the type check is ours (check_publisher).
-      ros::SubscribeOptions options;
-      options.initByFullCallbackType<const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
-          bridge.config.ros1_topic, queue,
-          [this, &bridge](const ros::MessageEvent<topic_tools::ShapeShifter const>& event) {
-            on_ros1_message(bridge, event);
-          });
-      if (bridge.config.reliability == Reliability::kBestEffort)
-        options.transport_hints = ros::TransportHints().udp();
-      bridge.subscriber = node.subscribe(options);
+      subscribe(bridge, node);
     } else {
       topic_tools::ShapeShifter shape;
       shape.morph(bridge.type.md5sum, bridge.type.ros1_name, bridge.type.definition,
@@ -120,6 +109,36 @@ void BridgeRunner::register_ros1(ros::NodeHandle& node) {
     }
   }
   ++registrations_;
+}
+
+void BridgeRunner::subscribe(Bridge& bridge, ros::NodeHandle& node) {
+  bridge.subscriber.shutdown();
+  // ShapeShifter subscribes with md5sum "*", so roscpp connects to any publisher of the topic and
+  // hands over the raw bytes with the publisher's connection header (topic_tools/shape_shifter.h);
+  // the type check is ours (check_publisher). Strict: the expected md5sum and type instead.
+  ros::SubscribeOptions options;
+  options.initByFullCallbackType<const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
+      bridge.config.ros1_topic, static_cast<std::uint32_t>(bridge.config.depth),
+      [this, &bridge](const ros::MessageEvent<topic_tools::ShapeShifter const>& event) {
+        on_ros1_message(bridge, event);
+      });
+  if (bridge.strict) {
+    options.md5sum = bridge.type.md5sum;
+    options.datatype = bridge.type.ros1_name;
+  }
+  if (bridge.config.reliability == Reliability::kBestEffort)
+    options.transport_hints = ros::TransportHints().udp();
+  bridge.subscriber = node.subscribe(options);
+}
+
+void BridgeRunner::resubscribe_refused(ros::NodeHandle& node) {
+  for (auto& bridge : bridges_) {
+    if (bridge->resubscribe.exchange(false)) {
+      spdlog::info("{}: subscribing again with md5sum {} only", describe(bridge->config),
+                   bridge->type.md5sum);
+      subscribe(*bridge, node);
+    }
+  }
 }
 
 void BridgeRunner::on_ros1_message(Bridge& bridge,
@@ -136,6 +155,7 @@ void BridgeRunner::on_ros1_message(Bridge& bridge,
   if (!problem.empty()) {
     ++bridge.counters.type_errors;
     remember_problem(bridge, problem);
+    if (!bridge.strict.exchange(true)) bridge.resubscribe = true;
     return;
   }
   std::vector<std::uint8_t> bytes(message.size());

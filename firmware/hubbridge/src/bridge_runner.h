@@ -37,6 +37,13 @@ struct Bridge {
   std::vector<std::uint8_t> dds_sample;      // dds_to_ros1: taken samples land here
   std::vector<std::uint8_t> ros1_bytes;      // dds_to_ros1: serialised for ROS 1
   std::string last_problem;                  // the last refusal, for /diagnostics
+  // A roscpp 1.15 subscription with md5sum "*" takes the md5sum of the first publisher it hears
+  // and asks every later one for it (seen in tests/ros1's mismatch test: the next, right
+  // publisher refused with "topic types do not match"). After a publisher with another
+  // definition was heard and named, the bridge subscribes again with the expected md5sum, so
+  // roscpp refuses that publisher at connection and every right one connects.
+  std::atomic<bool> strict{false};
+  std::atomic<bool> resubscribe{false};
   std::mutex problem_mutex;
 };
 
@@ -53,6 +60,9 @@ class BridgeRunner {
   // master restart: the old registrations are shut down first, so no bridge is there twice.
   void register_ros1(ros::NodeHandle& node);
   void shutdown_ros1();
+  // Subscribes again, strictly, the bridges that heard a publisher of another definition. Main
+  // thread, with the node register_ros1 got.
+  void resubscribe_refused(ros::NodeHandle& node);
 
   // Forwards what DDS delivered (dds_to_ros1), waiting up to `timeout` for data. Main thread.
   void forward_dds(Duration timeout);
@@ -62,6 +72,7 @@ class BridgeRunner {
 
  private:
   BridgeRunner() = default;
+  void subscribe(Bridge& bridge, ros::NodeHandle& node);
   void on_ros1_message(Bridge& bridge, const ros::MessageEvent<topic_tools::ShapeShifter const>& event);
 
   std::vector<std::unique_ptr<Bridge>> bridges_;

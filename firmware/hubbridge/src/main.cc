@@ -143,6 +143,7 @@ int run(const Options& options) {
   auto next_check = std::chrono::steady_clock::now();
   while (!g_stop) {
     (*runner)->forward_dds(std::chrono::milliseconds(20));
+    if (registered_with != 0) (*runner)->resubscribe_refused(node);
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) continue;
     next_check = now + std::chrono::seconds(1);
