@@ -8,6 +8,7 @@
 #   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
 #                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
 #   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
+#   make ros1-test   hubbridge between Debian's ROS 1 and the station, on the ASan build (docs/ros1-bridge.md)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
@@ -15,9 +16,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,14p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test ros1-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -80,6 +81,14 @@ kernel-test: deps
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
+
+# The ROS 1 tier (docs/ros1-bridge.md): a rospy Dock ECU bridged by hubbridge, its conformance and
+# the station's use-case with it, rosmaster restarts, mismatching publishers. Reuses build/host-asan
+# (builds only the programs it runs when they are missing or stale).
+ros1-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubbridge hubd hubctl hubsim
+	@tests/ros1/ros1_tier.py --build build/host-asan
 
 board:
 	@test -n "$(BOARD)" || { echo "make board: say which, e.g. make board BOARD=rpi4-tool-ecu" >&2; exit 2; }
