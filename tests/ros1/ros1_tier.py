@@ -53,6 +53,9 @@ def test_msgs(build):
         genmsg = subprocess.run([PYTHON, os.path.join(HERE, "ros1_msgs.py")], check=True, capture_output=True,
                                 text=True).stdout
         check(ours == genmsg, "hubbridge's md5sums differ from genmsg's:\n%s\nvs\n%s" % (ours, genmsg))
+        checked = subprocess.run([hubbridge, "tests/ros1/dock_bridge.yaml", "--check"], cwd=SOURCE,
+                                 capture_output=True, text=True)
+        check(checked.returncode == 0, "hubbridge --check refused the Dock bridge file:\n" + checked.stderr)
         return "%d md5sums agree with genmsg" % len(ours.splitlines())
     finally:
         shutil.rmtree(out)

@@ -100,6 +100,17 @@ int run(const Options& options) {
     fmt::print(stderr, "hubbridge: {}\n", messages.error().message);
     return exit_codes::kUsage;
   }
+  if (options.check) {  // the files and types only: joins no network, registers nothing
+    for (const BridgeConfig& bridge : file->bridges) {
+      auto type = bridged_type(bridge.type, *messages);
+      if (!type) {
+        fmt::print(stderr, "hubbridge: {} ({}): {}\n", bridge.ros1_topic, bridge.type, type.error().message);
+        return exit_codes::kUsage;
+      }
+    }
+    fmt::print("{}: {} bridges, every type matches {}\n", options.file, file->bridges.size(), file->msg_dir);
+    return exit_codes::kOk;
+  }
   auto config = dds::domain_config_from_environment();
   if (!config) {
     fmt::print(stderr, "hubbridge: {}\n", config.error().message);
@@ -117,10 +128,6 @@ int run(const Options& options) {
   if (!runner) {
     fmt::print(stderr, "hubbridge: {}\n", runner.error().message);
     return exit_codes::kUsage;
-  }
-  if (options.check) {
-    fmt::print("{}: {} bridges, every type matches ros2/hub_msgs\n", options.file, file->bridges.size());
-    return exit_codes::kOk;
   }
   auto diagnostics = DiagnosticsPublisher::create(*participant);
   if (!diagnostics) {
