@@ -14,6 +14,9 @@ rate loop can:
 What it does not do: answer a command at once. The State goes out on the next tick of the rate
 loop, so the echo comes up to one period late (conformance.yaml next to this file says so).
 
+--layout hub gives the hub layout instead (/<hub>/command DockEcuCommand with the node's fragment,
+/<hub>/state DockEcuState with the node's State), bridged by dock_bridge_hub_layout.yaml.
+
 Its slot sensors are the simulated station's: /sim/input sets them and /sim/<hub>/signals shows
 them, as a hubd on the simulation board does (firmware/sim/README.md). Run it bridged by hubbridge
 (dock_bridge.yaml) on a ROS 1 master: ROS_MASTER_URI=http://127.0.0.1:PORT dock_ecu_ros1.py
@@ -34,32 +37,82 @@ DockSlot = ros1_msgs.message_class("hub_msgs/DockSlot")
 SimInput = ros1_msgs.message_class("hub_msgs/SimInput")
 SimSignals = ros1_msgs.message_class("hub_msgs/SimSignals")
 SimSignal = ros1_msgs.message_class("hub_msgs/SimSignal")
+DockEcuState = ros1_msgs.message_class("hub_msgs/DockEcuState")
+DockEcuCommand = ros1_msgs.message_class("hub_msgs/DockEcuCommand")
 
 LIFECYCLE_SAFE = 2
 LIFECYCLE_OPERATIONAL = 3
-ACTIONS = ("monitor", "reset")
+
+
+class Tracker:
+    """The command semantics of one node or of the hub level (firmware/runtime command_tracker.h)."""
+
+    def __init__(self, timeout, name):
+        self.timeout, self.name = timeout, name
+        self.echo = None  # the content in force, or last in force
+        self.in_force = False
+        self.took_effect_at = None
+        self.last_arrival = None
+        self.rejection = None  # (text, time)
+
+    def arrive(self, content, at, problem):
+        """A command arrived at `at`; `problem` says why it is invalid (None: valid). True when valid."""
+        if problem:
+            self.rejection = (problem, at)
+            return False
+        if not self.in_force or content != self.echo:
+            self.echo = content
+            self.took_effect_at = at
+            self.rejection = None
+        self.in_force = True
+        self.last_arrival = at
+        return True
+
+    def check(self, now):
+        if self.in_force and now - self.last_arrival > self.timeout:
+            self.in_force = False
+            rospy.logwarn("%s: no valid command for more than %.3f s", self.name, self.timeout)
+
+    def fill(self, state, now, is_reset):
+        """The common State fields: header lifecycle, fresh_msg, t_plus, got_reset, error_list."""
+        errors = []
+        if self.rejection and now - self.rejection[1] <= self.timeout:
+            errors.append("rejected command: " + self.rejection[0])
+        if self.echo is not None and not self.in_force:
+            errors.append("command timeout: no valid command for %.2f s (limit %.2f s); outputs in safe state"
+                          % (now - self.last_arrival, self.timeout))
+        state.header.lifecycle = LIFECYCLE_OPERATIONAL if self.in_force else LIFECYCLE_SAFE
+        state.fresh_msg = self.in_force
+        state.t_plus = now - self.took_effect_at if self.took_effect_at is not None else 0.0
+        state.got_reset = self.in_force and is_reset
+        state.error_list = errors
+
+
+def copy_command(source, target):
+    target.target_type, target.target_name, target.action = source.target_type, source.target_name, source.action
 
 
 class DockEcu:
     def __init__(self, args):
         self.args = args
         self.lock = threading.Lock()
-        self.inbox = []  # (command tuple, arrival time) from the callback thread
+        self.inbox = []  # (command message, arrival time) from the callback thread
         self.occupied = {slot: False for slot in args.slots}
-        self.echo = None  # (target_type, target_name, action) in force or last in force
-        self.in_force = False
-        self.took_effect_at = None
-        self.last_arrival = None
-        self.rejection = None  # (text, time)
+        self.node = Tracker(args.command_timeout, args.node)
+        self.hub = Tracker(args.command_timeout, args.hub)
         self.seq = 0
-        self.state_pub = rospy.Publisher(args.state_topic, DockState, queue_size=10)
+        if args.layout == "hub":
+            self.state_pub = rospy.Publisher("/%s/state" % args.hub, DockEcuState, queue_size=10)
+            rospy.Subscriber("/%s/command" % args.hub, DockEcuCommand, self.on_command, queue_size=10)
+        else:
+            self.state_pub = rospy.Publisher(args.state_topic, DockState, queue_size=10)
+            rospy.Subscriber(args.command_topic, DockCommand, self.on_command, queue_size=10)
         self.signals_pub = rospy.Publisher("/sim/%s/signals" % args.hub, SimSignals, queue_size=10)
-        rospy.Subscriber(args.command_topic, DockCommand, self.on_command, queue_size=10)
         rospy.Subscriber("/sim/input", SimInput, self.on_sim_input, queue_size=50)
 
     def on_command(self, msg):
         with self.lock:
-            self.inbox.append(((msg.target_type, msg.target_name, msg.action), rospy.get_time()))
+            self.inbox.append((msg, rospy.get_time()))
 
     def on_sim_input(self, msg):
         prefix = self.args.signal_prefix
@@ -70,52 +123,68 @@ class DockEcu:
             if slot in self.occupied:
                 self.occupied[slot] = bool(msg.active)
 
-    def take_commands(self):
-        with self.lock:
-            arrived, self.inbox = self.inbox, []
-        for command, at in arrived:
-            target_type, target_name, action = command
-            if target_type != "dock" or target_name != self.args.node:
-                self.rejection = ("wrong target: '%s' of type '%s' (this is '%s' of type 'dock')"
-                                  % (target_name, target_type, self.args.node), at)
-                continue
-            if action not in ACTIONS:
-                self.rejection = ("unknown action '%s' (one of: %s)" % (action, ", ".join(ACTIONS)), at)
-                continue
-            if not self.in_force or command != self.echo:
-                self.echo = command
-                self.took_effect_at = at
-                self.rejection = None
-            self.in_force = True
-            self.last_arrival = at
+    def node_command(self, msg, at):
+        content = (msg.target_type, msg.target_name, msg.action)
+        problem = None
+        if msg.target_type != "dock" or msg.target_name != self.args.node:
+            problem = ("wrong target: '%s' of type '%s' (this is '%s' of type 'dock')"
+                       % (msg.target_name, msg.target_type, self.args.node))
+        elif msg.action not in ("monitor", "reset"):
+            problem = "unknown action '%s' (one of: monitor, reset)" % msg.action
+        self.node.arrive(content, at, problem)
 
-    def cycle(self, now):
-        self.take_commands()
-        timeout = self.args.command_timeout
-        if self.in_force and now - self.last_arrival > timeout:
-            self.in_force = False
-            rospy.logwarn("%s: no valid command for more than %.3f s", self.args.node, timeout)
-        errors = []
-        if self.rejection and now - self.rejection[1] <= timeout:
-            errors.append("rejected command: " + self.rejection[0])
-        if self.echo is not None and not self.in_force:
-            errors.append("command timeout: no valid command for %.2f s (limit %.2f s); outputs in safe state"
-                          % (now - self.last_arrival, timeout))
+    def hub_command(self, msg, at):
+        # hub_api/hub_layout.h: the hub command is checked and tracked; then its fragment goes to
+        # the node, with an empty target_type/target_name meaning this node.
+        content = (msg.target_type, msg.target_name, msg.action, msg.dock.target_type, msg.dock.target_name,
+                   msg.dock.action)
+        problem = None
+        if msg.target_type != "dock_ecu" or msg.target_name != self.args.hub:
+            problem = ("wrong target: '%s' of type '%s' (this is '%s' of type 'dock_ecu')"
+                       % (msg.target_name, msg.target_type, self.args.hub))
+        elif msg.action not in ("apply", "reset"):
+            problem = "unknown action '%s' (one of: apply, reset)" % msg.action
+        if not self.hub.arrive(content, at, problem):
+            return
+        fragment = DockCommand()
+        copy_command(msg.dock, fragment)
+        fragment.target_type = fragment.target_type or "dock"
+        fragment.target_name = fragment.target_name or self.args.node
+        self.node_command(fragment, at)
+        self.hub_echo = msg
+
+    def node_state(self, now):
         state = DockState()
-        self.seq += 1
         state.header.stamp = rospy.Time.from_sec(now)
         state.header.seq = self.seq
-        state.header.lifecycle = LIFECYCLE_OPERATIONAL if self.in_force else LIFECYCLE_SAFE
         state.name = self.args.node
-        if self.echo is not None:
-            state.echo.target_type, state.echo.target_name, state.echo.action = self.echo
-        state.fresh_msg = self.in_force
-        state.t_plus = now - self.took_effect_at if self.took_effect_at is not None else 0.0
-        state.got_reset = self.in_force and self.echo[2] == "reset"
-        state.error_list = errors
+        if self.node.echo is not None:
+            state.echo.target_type, state.echo.target_name, state.echo.action = self.node.echo
+        self.node.fill(state, now, self.node.echo is not None and self.node.echo[2] == "reset")
         with self.lock:
             occupied = dict(self.occupied)
         state.slots = [DockSlot(name=slot, occupied=occupied[slot]) for slot in self.args.slots]
+        return state, occupied
+
+    def cycle(self, now):
+        with self.lock:
+            arrived, self.inbox = self.inbox, []
+        for msg, at in arrived:
+            (self.hub_command if self.args.layout == "hub" else self.node_command)(msg, at)
+        self.node.check(now)
+        self.hub.check(now)
+        self.seq += 1
+        node_state, occupied = self.node_state(now)
+        if self.args.layout == "hub":
+            state = DockEcuState(name=self.args.hub, dock=node_state)
+            state.header.stamp = node_state.header.stamp
+            state.header.seq = self.seq
+            if self.hub.echo is not None:
+                copy_command(self.hub_echo, state.echo)
+                copy_command(self.hub_echo.dock, state.echo.dock)
+            self.hub.fill(state, now, self.hub.echo is not None and self.hub.echo[2] == "reset")
+        else:
+            state = node_state
         self.state_pub.publish(state)
         signals = SimSignals(hub=self.args.hub, valves=[], lifts=[])
         signals.signals = [SimSignal(name=self.args.signal_prefix + slot, output=False, active=occupied[slot])
@@ -135,6 +204,8 @@ class DockEcu:
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--hub", default="dock_ecu")
+    parser.add_argument("--layout", choices=("node_type", "hub"), default="node_type",
+                        help="node_type: /dock/command, /<hub>/dock/state; hub: /<hub>/command, /<hub>/state")
     parser.add_argument("--node", default="dock")
     parser.add_argument("--state-topic", default="/dock_ecu/dock/state")
     parser.add_argument("--command-topic", default="/dock/command")
