@@ -65,9 +65,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--results", required=True)
     parser.add_argument("--markdown", required=True)
+    parser.add_argument("--run", default="", help="when and how this section was measured, for its text")
     args = parser.parse_args()
     with open(os.path.join(args.results, "ros1.json")) as f:
         lines = section_lines(json.load(f))
+    if args.run:
+        lines.insert(2, "This section alone: %s." % args.run)
+        lines.insert(3, "")
     with open(args.markdown) as f:
         doc = f.read()
     text = "\n".join(lines) + "\n"

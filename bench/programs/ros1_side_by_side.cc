@@ -18,6 +18,7 @@
 
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/msgs/sample_memory.h"
 #include "hubrt/ros1/codec.h"
 #include "hubrt/ros1/definition.h"
 
@@ -244,7 +245,8 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "{}\n", domain.error().message);
     return 2;
   }
-  const std::string bin = std::filesystem::path(hubd_path()).parent_path().parent_path().string();
+  const std::string bin =
+      std::filesystem::path(hubd_path()).parent_path().parent_path().parent_path().string();  // build dir
   const std::string ecu_path = bin + "/bench/hubrt_bench_ros1_ecu";
   const std::string bridge_path = bin + "/firmware/hubbridge/hubbridge";
   const std::string master_uri = fmt::format("http://127.0.0.1:{}", free_port());
@@ -291,6 +293,10 @@ int main(int argc, char** argv) {
     ros1_client.take();
     const double t0 = mono_now();
     auto ecu = hubrt::test_support::ChildProcess::start(ecu_path, {}, env);
+    if (!ecu) {
+      fmt::print(stderr, "{}\n", ecu.error().message);
+      return 2;
+    }
     const double first = first_arrival(ros1_client, 15);
     if (first > 0) ecu_start.push_back((first - t0) * 1e3);
     stop(*ecu);
