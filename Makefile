@@ -12,6 +12,7 @@
 #                    link faults (tests/net/run; root; reuses build/host-asan, builds what is missing)
 #   make netem-test  a hub and hubctl across a link with 10 % loss / 50 ms delay (sch_netem) in the
 #                    kernel tier's VM: heartbeat and echo figures (tests/net/netem-in-vm)
+#   make ros1-test   hubbridge between Debian's ROS 1 and the station, on the ASan build (docs/ros1-bridge.md)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
@@ -19,9 +20,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,17p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,18p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -95,6 +96,13 @@ netem-test: deps
 	@cmake --preset host-asan >/dev/null
 	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
 	@tests/net/netem-in-vm --build-dir build/host-asan
+# The ROS 1 tier (docs/ros1-bridge.md): a rospy Dock ECU bridged by hubbridge, its conformance and
+# the station's use-case with it, rosmaster restarts, mismatching publishers. Reuses build/host-asan
+# (builds only the programs it runs when they are missing or stale).
+ros1-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubbridge hubd hubctl hubsim
+	@tests/ros1/ros1_tier.py --build build/host-asan
 
 board:
 	@test -n "$(BOARD)" || { echo "make board: say which, e.g. make board BOARD=rpi4-tool-ecu" >&2; exit 2; }

@@ -11,6 +11,8 @@ import os
 import sys
 from collections import defaultdict
 
+from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
+
 # DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
 ROS1_P50_MS = 0.34
 ROS1_P99_MS = 0.43
@@ -440,6 +442,7 @@ def main():
     realtime_section(report, load(args.results, "heartbeat.json"), load(args.results, "heartbeat_realtime.json"))
     startup_section(report, load(args.results, "startup.json"))
     scale_section(report, load(args.results, "scale.json"))
+    ros1_section(report, load(args.results, "ros1.json"))
     drew = picture(args.results, args.picture)
     info = machine(args.results)
 

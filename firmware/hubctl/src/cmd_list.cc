@@ -8,6 +8,7 @@
 #include "hubrt/dds/ros_names.h"
 
 #include "commands.h"
+#include "hub_diagnostics.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -24,8 +25,13 @@ int run_list(const ListOptions& options) {
     fmt::print(stderr, "hubctl list: {}\n", participant.error().message);
     return kExitUsage;
   }
-  // Discovery needs a moment; keep looking for the given time and report what was seen.
-  std::this_thread::sleep_for(seconds(options.wait_s));
+  // Discovery needs a moment; keep looking for the given time and report what was seen. Meanwhile
+  // /diagnostics tells which bridged topics a hubbridge reports silent.
+  auto silent = listen_for_silent_bridges(*participant, options.wait_s);
+  if (!silent) {
+    fmt::print(stderr, "hubctl list: {}\n", silent.error().message);
+    return kExitFailed;
+  }
   auto snapshot = dds::discover(*participant);
   if (!snapshot) {
     fmt::print(stderr, "hubctl list: {}\n", snapshot.error().message);
@@ -41,9 +47,12 @@ int run_list(const ListOptions& options) {
     if (endpoint.local) continue;
     const auto ros = dds::dds_to_ros_topic(endpoint.topic_name);
     auto type = dds::dds_to_ros_type(endpoint.type_name);
-    const std::string line =
-        fmt::format("  {:6} {:40} {}", endpoint.direction == dds::EndpointDirection::kWriter ? "pub" : "sub",
-                    ros ? *ros : endpoint.topic_name, type ? *type : endpoint.type_name);
+    const bool writer = endpoint.direction == dds::EndpointDirection::kWriter;
+    std::string line = fmt::format("  {:6} {:40} {}", writer ? "pub" : "sub",
+                                   ros ? *ros : endpoint.topic_name, type ? *type : endpoint.type_name);
+    if (const auto quiet = ros ? silent->find(*ros) : silent->end(); writer && quiet != silent->end()) {
+      line += fmt::format("  SILENT ({})", quiet->second);
+    }
     const auto it = names.find(endpoint.participant_key);
     topics_by_participant[it == names.end() ? "(unknown participant)" : it->second].push_back(line);
   }

