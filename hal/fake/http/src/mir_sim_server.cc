@@ -99,6 +99,12 @@ Expected<void> MirSimServer::listen() {
   httplib::Server* raw = server.get();
   server_ = std::move(server);
   thread_ = std::thread([raw] { raw->listen_after_bind(); });
+  // httplib::Server::stop() does nothing before the thread has entered its accept loop
+  // (is_running()), so a stop right after the start would leave it listening forever: wait.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!raw->is_running() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   return {};
 }
 
