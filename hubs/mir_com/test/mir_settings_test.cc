@@ -35,7 +35,7 @@ TEST(MirComHubType, TheDefaultConfigurationNeedsTheBoardsHttpDevice) {
 }
 
 TEST(MirComSettings, BadSettingsNameTheLine) {
-  constexpr const char* kMover = "  mover:\n    type: robot_mover\n    device: mir\n    robot_name: mir100\n";
+  constexpr std::string_view kMover = "  mover:\n    type: robot_mover\n    device: mir\n    robot_name: mir100\n";
   EXPECT_EQ(requirements_of(std::string(kMover)).error().message,
             "mir.yaml:4:5: nodes.mover: missing required key 'move_mission'");
   EXPECT_EQ(requirements_of(std::string(kMover) + "    move_mission: not-a-guid!\n").error().message,
