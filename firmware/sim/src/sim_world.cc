@@ -101,8 +101,8 @@ Expected<void> mir_fault(hal::fake::MirPlatform& platform, hal::fake::MirSimServ
   } else if (fault == "come_back") {
     return server.come_back();
   } else if (fault == "platform_error") {
-    platform.inject_error(request.value == 0 ? 3001 : static_cast<int>(request.value), "Simulated platform error",
-                          now);
+    platform.inject_error(request.value == 0 ? 3001 : static_cast<int>(request.value),
+                          "Simulated platform error", now);
   } else if (fault == "battery") {
     platform.set_battery_percent(request.value);
   } else {

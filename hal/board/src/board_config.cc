@@ -34,7 +34,8 @@ const BoardModbusDevice* BoardConfig::find_modbus(std::string_view device) const
 }
 
 const BoardHttpDevice* BoardConfig::find_http(std::string_view device) const noexcept {
-  return find_by(http, device, [](const BoardHttpDevice& d) -> const std::string& { return d.config.device; });
+  return find_by(http, device,
+                 [](const BoardHttpDevice& d) -> const std::string& { return d.config.device; });
 }
 
 Expected<std::string> load_http_authorization(const BoardHttpDevice& device) {
@@ -43,15 +44,15 @@ Expected<std::string> load_http_authorization(const BoardHttpDevice& device) {
   std::ifstream in(path);
   if (!in) {
     const int error = errno;
-    return make_error(error == EACCES ? ErrorCode::kPermissionDenied : ErrorCode::kNotFound,
-                      device.config.device + ": cannot read authorization_file " + path + ": " + std::strerror(error));
+    return make_error(
+        error == EACCES ? ErrorCode::kPermissionDenied : ErrorCode::kNotFound,
+        device.config.device + ": cannot read authorization_file " + path + ": " + std::strerror(error));
   }
   std::string line;
   std::getline(in, line);
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  const bool control = std::any_of(line.begin(), line.end(), [](char c) {
-    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-  });
+  const bool control = std::any_of(line.begin(), line.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
   if (line.empty() || line.size() > 512 || control) {
     return make_error(ErrorCode::kInvalidArgument,
                       device.config.device + ": authorization_file " + path +

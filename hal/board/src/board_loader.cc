@@ -32,8 +32,8 @@ Expected<std::vector<std::string>> parse_hubs(const YamlMap& root) {
 }
 
 Expected<BoardConfig> parse_checked_board(const YamlMap& root) {
-  if (auto ok =
-          root.only_keys({"board", "description", "arch", "hub", "gpio", "can", "modbus", "http", "simulation"});
+  if (auto ok = root.only_keys(
+          {"board", "description", "arch", "hub", "gpio", "can", "modbus", "http", "simulation"});
       !ok) {
     return std::move(ok).error();
   }

@@ -13,10 +13,12 @@ bool printable(std::string_view text) {
                       [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
 }
 
-Expected<BoardHttpDevice> parse_http_device(const std::string& name, const YamlMap& map, bool simulation_board) {
-  if (!valid_identifier(name)) return map.error("not a valid device name (lower-case letters, digits, '_' and '-')");
-  if (auto ok = map.only_keys({"host", "port", "base_path", "timeout_ms", "connect_timeout_ms", "max_response_kb",
-                               "authorization_file", "authorization"});
+Expected<BoardHttpDevice> parse_http_device(const std::string& name, const YamlMap& map,
+                                            bool simulation_board) {
+  if (!valid_identifier(name))
+    return map.error("not a valid device name (lower-case letters, digits, '_' and '-')");
+  if (auto ok = map.only_keys({"host", "port", "base_path", "timeout_ms", "connect_timeout_ms",
+                               "max_response_kb", "authorization_file", "authorization"});
       !ok) {
     return std::move(ok).error();
   }
@@ -32,7 +34,8 @@ Expected<BoardHttpDevice> parse_http_device(const std::string& name, const YamlM
   auto port = map.integer_or("port", 80, 0, 65535);
   if (!port) return std::move(port).error();
   if (*port == 0 && !simulation_board) {
-    return map.error_at("port", "port 0 (the simulator picks a free port) is only allowed on a simulation board");
+    return map.error_at("port",
+                        "port 0 (the simulator picks a free port) is only allowed on a simulation board");
   }
   device.config.port = static_cast<std::uint16_t>(*port);
   auto base = map.string_or("base_path", "/api/v2.0.0");
@@ -56,8 +59,9 @@ Expected<BoardHttpDevice> parse_http_device(const std::string& name, const YamlM
   if (map.has("authorization")) {
     // A credential in a board file is readable by anyone who reads the board: simulation only.
     if (!simulation_board) {
-      return map.error_at("authorization",
-                          "an inline authorization is only allowed on a simulation board: use authorization_file");
+      return map.error_at(
+          "authorization",
+          "an inline authorization is only allowed on a simulation board: use authorization_file");
     }
     auto value = map.string("authorization");
     if (!value) return std::move(value).error();

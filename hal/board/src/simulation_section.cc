@@ -266,11 +266,13 @@ Expected<void> check_complete(const YamlMap& simulation, const BoardConfig& boar
     }
   }
   for (const BoardHttpDevice& device : board.http) {
-    const bool simulated = std::any_of(sim.http.begin(), sim.http.end(),
-                                       [&](const SimHttpDevice& d) { return d.device == device.config.device; });
+    const bool simulated = std::any_of(sim.http.begin(), sim.http.end(), [&](const SimHttpDevice& d) {
+      return d.device == device.config.device;
+    });
     if (!simulated) {
-      return simulation.error(fmt::format("HTTP device '{}' (line {}) has no simulator: add simulation.http.{}",
-                                          device.config.device, device.where.line, device.config.device));
+      return simulation.error(
+          fmt::format("HTTP device '{}' (line {}) has no simulator: add simulation.http.{}",
+                      device.config.device, device.where.line, device.config.device));
     }
   }
   return {};

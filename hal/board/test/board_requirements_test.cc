@@ -56,7 +56,8 @@ TEST_F(BoardRequirementsTest, SaysWhatIsMissing) {
   const BoardRequirements rest{"dock_ecu", {}, {}, {}, {}, {"mir"}};
   checked = check_requirements(board_, rest);
   ASSERT_FALSE(checked.is_ok());
-  EXPECT_EQ(checked.error().message, "hub dock_ecu needs HTTP device 'mir' but boards/x.yaml does not declare it");
+  EXPECT_EQ(checked.error().message,
+            "hub dock_ecu needs HTTP device 'mir' but boards/x.yaml does not declare it");
 }
 
 TEST_F(BoardRequirementsTest, ABusIsNotAnOutput) {

@@ -19,8 +19,8 @@ Error in_node(const config::NodeConfig& node, const Error& error) {
 // The platform's HTTP client from the board (its authorization read now, not at --check), behind
 // the HAL's worker thread with the MiR decoder: the logic submits and polls.
 // Errors: the device missing from the board (kNotFound), the authorization file, the backend's.
-Expected<std::unique_ptr<MirDevice>> open_platform(const MirLinkSettings& settings, const hal::BoardConfig& board,
-                                                   hal::Backend& backend) {
+Expected<std::unique_ptr<MirDevice>> open_platform(const MirLinkSettings& settings,
+                                                   const hal::BoardConfig& board, hal::Backend& backend) {
   const hal::BoardHttpDevice* device = board.find_http(settings.device);
   if (device == nullptr) {
     return make_error(ErrorCode::kNotFound,
@@ -33,14 +33,16 @@ Expected<std::unique_ptr<MirDevice>> open_platform(const MirLinkSettings& settin
   auto client = backend.open_http(config);
   if (!client) return std::move(client).error();
   return hal::open_threaded_async_http<protocol::mir::MirReply>(
-      std::move(*client), protocol::mir::decode_reply, hal::http_request_timeout(config), hal::describe_http(config));
+      std::move(*client), protocol::mir::decode_reply, hal::http_request_timeout(config),
+      hal::describe_http(config));
 }
 
 class MirComHubType final : public hub_api::HubType {
  public:
   [[nodiscard]] std::string_view name() const noexcept override { return MirComTypes::kType; }
 
-  [[nodiscard]] Expected<hal::BoardRequirements> requirements(const config::HubConfig& config) const override {
+  [[nodiscard]] Expected<hal::BoardRequirements> requirements(
+      const config::HubConfig& config) const override {
     hal::BoardRequirements required;
     required.hub = config.type;
     for (const config::NodeConfig& node : config.nodes) {
@@ -53,8 +55,9 @@ class MirComHubType final : public hub_api::HubType {
         if (!settings) return std::move(settings).error();
         add_requirements(settings->link, required);
       } else {
-        return node.settings.error_at("type", fmt::format("a mir_com hub has nodes of type '{}' or '{}', not '{}'",
-                                                          RobotMoverLogic::kType, PoseSaverLogic::kType, node.type));
+        return node.settings.error_at("type",
+                                      fmt::format("a mir_com hub has nodes of type '{}' or '{}', not '{}'",
+                                                  RobotMoverLogic::kType, PoseSaverLogic::kType, node.type));
       }
     }
     return required;

@@ -31,12 +31,16 @@ class MirLink {
   bool send(const hal::HttpRequest& request, Time now) noexcept;
   [[nodiscard]] bool busy() const noexcept { return in_flight_; }
   // A GET /status is due (poll interval since the last status request).
-  [[nodiscard]] bool status_due(Time now) const noexcept { return !asked_status_ || now - status_asked_at_ >= poll_; }
+  [[nodiscard]] bool status_due(Time now) const noexcept {
+    return !asked_status_ || now - status_asked_at_ >= poll_;
+  }
   // Sends GET /status when due and idle.
   void poll_status(Time now) noexcept;
 
   // The platform answered a status within answer_within.
-  [[nodiscard]] bool answering(Time now) const noexcept { return has_status_ && now - status_at_ <= answer_within_; }
+  [[nodiscard]] bool answering(Time now) const noexcept {
+    return has_status_ && now - status_at_ <= answer_within_;
+  }
   [[nodiscard]] bool has_status() const noexcept { return has_status_; }
   [[nodiscard]] const protocol::mir::MirStatus& status() const noexcept { return status_; }
   [[nodiscard]] Time status_at() const noexcept { return status_at_; }

@@ -17,7 +17,8 @@ Expected<MirLinkSettings> parse_link(const config::YamlMap& settings) {
   auto robot = settings.string("robot_name");
   if (!robot) return std::move(robot).error();
   if (!protocol::mir::valid_position_name(*robot)) {
-    return settings.error_at("robot_name", fmt::format("'{}': 1 to 40 of letters, digits, '_', '-', '.', ' '", *robot));
+    return settings.error_at("robot_name",
+                             fmt::format("'{}': 1 to 40 of letters, digits, '_', '-', '.', ' '", *robot));
   }
   link.robot_name = *robot;
   auto poll = settings.integer_or("poll_ms", 200, 20, 5000);
@@ -36,8 +37,8 @@ Expected<MirLinkSettings> parse_link(const config::YamlMap& settings) {
 
 Expected<RobotMoverSettings> parse_robot_mover_settings(const config::NodeConfig& node) {
   const config::YamlMap& settings = node.settings;
-  if (auto ok = settings.only_keys(
-          {"type", "device", "robot_name", "poll_ms", "answer_within_ms", "move_mission", "position_parameter"});
+  if (auto ok = settings.only_keys({"type", "device", "robot_name", "poll_ms", "answer_within_ms",
+                                    "move_mission", "position_parameter"});
       !ok) {
     return std::move(ok).error();
   }
@@ -48,7 +49,8 @@ Expected<RobotMoverSettings> parse_robot_mover_settings(const config::NodeConfig
   auto mission = settings.string("move_mission");
   if (!mission) return std::move(mission).error();
   if (!protocol::mir::valid_guid(*mission)) {
-    return settings.error_at("move_mission", fmt::format("'{}' is not a MiR guid (hex digits and '-')", *mission));
+    return settings.error_at("move_mission",
+                             fmt::format("'{}' is not a MiR guid (hex digits and '-')", *mission));
   }
   out.move_mission = *mission;
   auto parameter = settings.string_or("position_parameter", "Position");

@@ -12,15 +12,15 @@ namespace hubrt::mir_com {
 
 // What both node types share: the platform's HTTP device and how it is polled.
 struct MirLinkSettings {
-  std::string device;      // the board's HTTP device, e.g. "mir"
-  std::string robot_name;  // what commands must name in robot_name, e.g. "mir100"
-  Duration poll = std::chrono::milliseconds(200);            // least time between two GET /status
+  std::string device;                              // the board's HTTP device, e.g. "mir"
+  std::string robot_name;                          // what commands must name in robot_name, e.g. "mir100"
+  Duration poll = std::chrono::milliseconds(200);  // least time between two GET /status
   Duration answer_within = std::chrono::milliseconds(2000);  // no status for this long: not answering
 };
 
 struct RobotMoverSettings {
   MirLinkSettings link;
-  std::string move_mission;                    // guid of the platform's "move to position" mission
+  std::string move_mission;                     // guid of the platform's "move to position" mission
   std::string position_parameter = "Position";  // that mission's position parameter
 };
 

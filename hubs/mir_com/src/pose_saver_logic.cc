@@ -30,7 +30,8 @@ void PoseSaverLogic::read_inputs(Time now) noexcept {
   if (!link_.collect(now, completion_)) return;
   const MirCall call = completion_.reply.call;
   const bool ok = completion_.transport.is_ok() && completion_.reply.ok;
-  if (phase_ == Phase::kReading && call == MirCall::kGetStatus && ok && completion_.submitted_at >= reading_since_) {
+  if (phase_ == Phase::kReading && call == MirCall::kGetStatus && ok &&
+      completion_.submitted_at >= reading_since_) {
     phase_ = Phase::kSaving;
   } else if (phase_ == Phase::kSaving && call == MirCall::kPostPosition) {
     if (ok) {
@@ -86,7 +87,8 @@ void PoseSaverLogic::update(const Command* in_force, Time now) noexcept {
     saving_x_ = status.x;
     saving_y_ = status.y;
     saving_yaw_ = status.yaw_deg;
-    link_.send(mir::post_position(pose_.view(), status.x, status.y, status.yaw_deg, status.map_id.view()), now);
+    link_.send(mir::post_position(pose_.view(), status.x, status.y, status.yaw_deg, status.map_id.view()),
+               now);
   } else {
     link_.poll_status(now);
   }

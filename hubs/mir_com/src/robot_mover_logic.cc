@@ -9,7 +9,8 @@ namespace hubrt::mir_com {
 namespace mir = protocol::mir;
 using mir::MirCall;
 
-RobotMoverLogic::RobotMoverLogic(const RobotMoverSettings& settings, std::unique_ptr<MirDevice> device) noexcept
+RobotMoverLogic::RobotMoverLogic(const RobotMoverSettings& settings,
+                                 std::unique_ptr<MirDevice> device) noexcept
     : settings_(settings), link_(std::move(device), settings.link) {
   link_.device().set_request_on_close(mir::set_state(mir::kStatePause));
 }
@@ -102,7 +103,8 @@ void RobotMoverLogic::on_completion(const MirCompletion& done) noexcept {
         fail(std::string_view(text, out.size < sizeof text ? out.size : sizeof text));
       }
       return;
-    case Phase::kIdle: break;
+    case Phase::kIdle:
+      break;
   }
   if (call == MirCall::kClearError && ok) {
     clear_pending_ = false;
@@ -149,7 +151,8 @@ void RobotMoverLogic::update(const Command* in_force, Time now) noexcept {
 
 void RobotMoverLogic::follow(const Command& command, Time now) noexcept {
   const std::string_view action = command.action();
-  const bool fresh = !has_handled_ || handled_action_.view() != action || handled_pose_.view() != command.pose_name();
+  const bool fresh =
+      !has_handled_ || handled_action_.view() != action || handled_pose_.view() != command.pose_name();
   if (fresh) {
     has_handled_ = true;
     handled_action_.assign_cut(action);
@@ -187,9 +190,12 @@ void RobotMoverLogic::follow(const Command& command, Time now) noexcept {
 
 void RobotMoverLogic::follow_move(Time now) noexcept {
   switch (phase_) {
-    case Phase::kFinding: link_.send(mir::find_position(goal_.view()), now); return;
+    case Phase::kFinding:
+      link_.send(mir::find_position(goal_.view()), now);
+      return;
     case Phase::kPosting:
-      link_.send(mir::post_mission(settings_.move_mission, settings_.position_parameter, goal_guid_.view()), now);
+      link_.send(mir::post_mission(settings_.move_mission, settings_.position_parameter, goal_guid_.view()),
+                 now);
       return;
     case Phase::kRunning:
       // A platform paused (by us, while not operational, or by someone at the platform) goes on.
@@ -205,7 +211,8 @@ void RobotMoverLogic::follow_move(Time now) noexcept {
         }
       }
       return;
-    case Phase::kIdle: return;
+    case Phase::kIdle:
+      return;
   }
 }
 

@@ -31,7 +31,8 @@ class RobotMoverLogic {
   using Command = hub_msgs::RobotMoverCommandView;
   using State = hub_msgs::RobotMoverState;
   static constexpr std::string_view kType = "robot_mover";
-  static constexpr std::array<std::string_view, 5> kActions{"move", "pause", "continue", "clear_error", "reset"};
+  static constexpr std::array<std::string_view, 5> kActions{"move", "pause", "continue", "clear_error",
+                                                            "reset"};
 
   // `device`: the platform's asynchronous HTTP device, opened by the hub type. Sets its
   // request-on-close to "pause".

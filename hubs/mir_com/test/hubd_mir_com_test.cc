@@ -55,7 +55,8 @@ class HubdMirComTest : public ::testing::Test {
     command_writer_.emplace(*dds::Writer<RobotMoverCommand>::create(*participant_, *command_topic_));
     state_topic_.emplace(*dds::Topic<RobotMoverState>::create(*participant_, "/mir_com/mover/state"));
     state_reader_.emplace(*dds::Reader<RobotMoverState>::create(*participant_, *state_topic_));
-    fault_topic_.emplace(*dds::Topic<hub_msgs_msg_dds__SimFault_>::create(*participant_, sim::kSimFaultTopic));
+    fault_topic_.emplace(
+        *dds::Topic<hub_msgs_msg_dds__SimFault_>::create(*participant_, sim::kSimFaultTopic));
     fault_writer_.emplace(*dds::Writer<hub_msgs_msg_dds__SimFault_>::create(*participant_, *fault_topic_));
 
     integration::HubProcessOptions options;
@@ -159,15 +160,17 @@ TEST_F(HubdMirComTest, MovesThePlatformAndPausesItWhenThePlannerStops) {
   // Arrived (the status after the mission's Done shows where it stands).
   ASSERT_TRUE(wait_for([](const View& s) {
     return s.actual_pose() == "kit_pickup" && std::abs(s.x() - 2.0F) < 1e-3F;
-  })) << errors_of(last()) << hub_->output();
+  })) << errors_of(last())
+      << hub_->output();
   EXPECT_EQ(last().done_action(), "moved");
 
   // A move to the station, and the planner goes quiet in the middle of it.
   command("move", "station");
   ASSERT_TRUE(wait_for([](const View& s) { return s.moving() && s.y() > 0.1F; })) << hub_->output();
   stop_planner();
-  ASSERT_TRUE(wait_for([](const View& s) { return !s.fresh_msg() && s.safe_hold() && s.platform_state() == "Pause"; }))
-      << hub_->output();
+  ASSERT_TRUE(wait_for([](const View& s) {
+    return !s.fresh_msg() && s.safe_hold() && s.platform_state() == "Pause";
+  })) << hub_->output();
   EXPECT_FALSE(last().moving());
   EXPECT_NE(errors_of(last()).find("command timeout"), std::string::npos) << errors_of(last());
   const float y = last().y();
@@ -185,20 +188,23 @@ TEST_F(HubdMirComTest, RestFaultsAreClearErrorsWhileTheHeartbeatGoesOn) {
   command("pause");
   ASSERT_TRUE(wait_for([](const View& s) { return s.answering() && s.done_action() == "paused"; }))
       << hub_->output();
-  for (const std::string_view fault : {"server_error", "unauthorized", "malformed_json", "stop_answering", "go_down"}) {
+  for (const std::string_view fault :
+       {"server_error", "unauthorized", "malformed_json", "stop_answering", "go_down"}) {
     SCOPED_TRACE(fault);
     sim_fault(std::string(fault));
     const std::string expected = std::string(fault) == "server_error"     ? "HTTP 500"
                                  : std::string(fault) == "unauthorized"   ? "HTTP 401"
                                  : std::string(fault) == "malformed_json" ? "malformed JSON"
-                                 : std::string(fault) == "stop_answering" ? "timeout:"
-                                                                          : "cannot connect (refused or unreachable)";
+                                 : std::string(fault) == "stop_answering"
+                                     ? "timeout:"
+                                     : "cannot connect (refused or unreachable)";
     ASSERT_TRUE(wait_for([&](const View& s) { return errors_of(s).find(expected) != std::string::npos; }))
         << errors_of(last()) << hub_->output();
     // Not answering for answer_within_ms: not operational (recovering), held paused; States go on.
     ASSERT_TRUE(wait_for([](const View& s) {
       return !s.answering() &&
-             s.header().lifecycle() == static_cast<std::uint8_t>(runtime::Lifecycle::kRecovering) && s.safe_hold();
+             s.header().lifecycle() == static_cast<std::uint8_t>(runtime::Lifecycle::kRecovering) &&
+             s.safe_hold();
     })) << errors_of(last());
     sim_fault(std::string(fault) == "go_down" ? "come_back" : "answer");
     ASSERT_TRUE(wait_for([](const View& s) {

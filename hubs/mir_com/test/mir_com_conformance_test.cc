@@ -44,8 +44,8 @@ TEST_P(MirComConformanceTest, PassesEveryCheck) {
   env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
   auto suite = test_support::ChildProcess::start(
       HUBRT_HUBCTL_PATH,
-      {"conformance", "--hub", "mir_com", "--thresholds", HUBRT_CI_THRESHOLDS, "--duration", "2", "--hold", "0.6",
-       "--latency-samples", "30"},
+      {"conformance", "--hub", "mir_com", "--thresholds", HUBRT_CI_THRESHOLDS, "--duration", "2", "--hold",
+       "0.6", "--latency-samples", "30"},
       env);
   ASSERT_TRUE(suite) << suite.error().message;
   auto status = suite->wait(kSuiteTimeout);

@@ -3,10 +3,10 @@
 // cycle() that steps the logic as runtime::Node does.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <memory>
 #include <optional>
+
+#include <gtest/gtest.h>
 
 #include "hubrt/config/hub_config.h"
 #include "hubrt/hal/fake/mir_platform.h"

@@ -36,7 +36,8 @@ class PoseSaverTest : public MirLogicFixture {
 
 TEST_F(PoseSaverTest, UpdateSavesTheCurrentPoseOncePerCommand) {
   PoseSaverLogic logic = make_logic();
-  hub_msgs::PoseSaverState state = run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(1));
+  hub_msgs::PoseSaverState state =
+      run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(1));
   EXPECT_FALSE(state.busy());
   EXPECT_EQ(posts(), 0) << "nothing is saved without a command";
   const hub_msgs::PoseSaverCommand update = command("update", "here");
@@ -83,7 +84,8 @@ TEST_F(PoseSaverTest, NotOperationalAbandonsASaveBeforeItsPost) {
   cycle(logic, &update);  // GET /status submitted, never answered
   run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(3));
   device_->set_fault(DeviceFault::kNone);
-  const hub_msgs::PoseSaverState state = run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(2));
+  const hub_msgs::PoseSaverState state =
+      run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(2));
   EXPECT_FALSE(state.busy());
   EXPECT_EQ(posts(), 0);
 }

@@ -48,7 +48,8 @@ TEST_F(RobotMoverTest, NotOperationalPausesThePlatformOnceAndHoldsIt) {
   // hubd stopping closes the device, which pauses the platform as its last word.
   EXPECT_EQ(device_->on_close().method, hal::HttpMethod::kPut);
   EXPECT_EQ(device_->on_close().body.view(), R"({"state_id": 4})");
-  hub_msgs::RobotMoverState state = run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(5));
+  hub_msgs::RobotMoverState state =
+      run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(5));
   EXPECT_EQ(platform_->snapshot().state_id, 4);
   EXPECT_EQ(count_sent(kPause), 1) << "once, not every cycle";
   EXPECT_TRUE(state.safe_hold());
@@ -91,7 +92,8 @@ TEST_F(RobotMoverTest, TheWatchdogPausesAMoveAndTheSameCommandLetsItGoOn) {
   run(logic, &move, seconds(1));
   ASSERT_EQ(platform_->snapshot().state_id, 5);
   // The planner went silent: the node hands in no command.
-  hub_msgs::RobotMoverState state = run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(2));
+  hub_msgs::RobotMoverState state =
+      run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(2));
   EXPECT_TRUE(state.safe_hold());
   EXPECT_FALSE(state.moving());
   EXPECT_EQ(platform_->snapshot().state_id, 4);
@@ -126,8 +128,9 @@ TEST_F(RobotMoverTest, AnUnknownPositionIsAFaultUntilReset) {
   const hub_msgs::RobotMoverCommand move = command("move", "nowhere");
   run(logic, &move, seconds(1));
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault);
-  EXPECT_TRUE(errors_.contains("move failed (reset to clear): GET /positions: the platform has no position named "
-                               "'nowhere'"))
+  EXPECT_TRUE(
+      errors_.contains("move failed (reset to clear): GET /positions: the platform has no position named "
+                       "'nowhere'"))
       << errors_text();
   logic.reset();
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kOk);
@@ -141,7 +144,8 @@ TEST_F(RobotMoverTest, ThePlatformsErrorIsAFaultAndResetClearsItLeavingItPaused)
   platform_->inject_error(3001, "Emergency stop button pressed", clock_.now().mono);
   run(logic, &move, seconds(1));
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kFault);
-  EXPECT_TRUE(errors_.contains("platform in state Error (12), 1 error(s), first: 3001: Emergency stop button pressed"))
+  EXPECT_TRUE(errors_.contains(
+      "platform in state Error (12), 1 error(s), first: 3001: Emergency stop button pressed"))
       << errors_text();
   logic.reset();
   run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(1));
@@ -164,7 +168,8 @@ TEST_P(RobotMoverFaultTest, IsAClearErrorAndTheNodeRecovers) {
   run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(1));
   ASSERT_EQ(logic.condition(), runtime::NodeCondition::kOk);
   device_->set_fault(GetParam().fault);
-  hub_msgs::RobotMoverState state = run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(4));
+  hub_msgs::RobotMoverState state =
+      run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(4));
   EXPECT_TRUE(errors_.contains(GetParam().error)) << errors_text();
   EXPECT_TRUE(errors_.contains("platform mir (scripted) not answering: no status for")) << errors_text();
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kDevicesMissing);
@@ -179,11 +184,12 @@ TEST_P(RobotMoverFaultTest, IsAClearErrorAndTheNodeRecovers) {
 
 INSTANTIATE_TEST_SUITE_P(
     Faults, RobotMoverFaultTest,
-    ::testing::Values(FaultCase{DeviceFault::kServerError, "GET /status: HTTP 500 (internal server error)"},
-                      FaultCase{DeviceFault::kUnauthorized, "HTTP 401 (unauthorized: check the board's authorization)"},
-                      FaultCase{DeviceFault::kNoAnswer, "timeout: no answer within the request timeout"},
-                      FaultCase{DeviceFault::kRefused, "unavailable: cannot connect (refused or unreachable)"},
-                      FaultCase{DeviceFault::kMalformedJson, "GET /status: malformed JSON in the answer"}));
+    ::testing::Values(
+        FaultCase{DeviceFault::kServerError, "GET /status: HTTP 500 (internal server error)"},
+        FaultCase{DeviceFault::kUnauthorized, "HTTP 401 (unauthorized: check the board's authorization)"},
+        FaultCase{DeviceFault::kNoAnswer, "timeout: no answer within the request timeout"},
+        FaultCase{DeviceFault::kRefused, "unavailable: cannot connect (refused or unreachable)"},
+        FaultCase{DeviceFault::kMalformedJson, "GET /status: malformed JSON in the answer"}));
 
 TEST_F(RobotMoverTest, CommandsForAnotherRobotOrWithBadFieldsAreRejected) {
   RobotMoverLogic logic = make_logic();

@@ -28,7 +28,8 @@ bool ScriptedMirDevice::poll(Time now, MirCompletion& out) noexcept {
   }
   if (now - submitted_at_ < latency_) return false;
   pending_ = false;
-  const std::string line = std::string(hal::to_string(request_.method)) + " " + std::string(request_.path.view()) +
+  const std::string line = std::string(hal::to_string(request_.method)) + " " +
+                           std::string(request_.path.view()) +
                            (request_.body.empty() ? "" : " " + std::string(request_.body.view()));
   if (fault_ == DeviceFault::kRefused) {
     out.transport = Status(ErrorCode::kUnavailable);
@@ -42,8 +43,8 @@ bool ScriptedMirDevice::poll(Time now, MirCompletion& out) noexcept {
   } else if (fault_ == DeviceFault::kUnauthorized) {
     response.status = 401;
   } else {
-    const hal::fake::MirAnswer answer = platform_.handle(hal::to_string(request_.method), request_.path.view(),
-                                                         request_.body.view(), "", submitted_at_);
+    const hal::fake::MirAnswer answer = platform_.handle(
+        hal::to_string(request_.method), request_.path.view(), request_.body.view(), "", submitted_at_);
     response.status = answer.status;
     response.body = answer.body;
     if (fault_ == DeviceFault::kMalformedJson) response.body.resize(response.body.size() / 2);

@@ -1,8 +1,7 @@
 // The answers' decoder: runs on the HTTP worker thread (it allocates while parsing), never throws.
 // Malformed JSON, a missing field or one of the wrong type is a problem named in the reply.
-#include <nlohmann/json.hpp>
-
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "hubrt/protocol/mir_rest.h"
 
@@ -31,14 +30,22 @@ void fail(MirReply& reply, std::string_view why) {
 
 std::string_view http_reason(int status) {
   switch (status) {
-    case 400: return "bad request";
-    case 401: return "unauthorized: check the board's authorization";
-    case 403: return "forbidden";
-    case 404: return "not found";
-    case 409: return "conflict";
-    case 500: return "internal server error";
-    case 503: return "service unavailable";
-    default: return "unexpected status";
+    case 400:
+      return "bad request";
+    case 401:
+      return "unauthorized: check the board's authorization";
+    case 403:
+      return "forbidden";
+    case 404:
+      return "not found";
+    case 409:
+      return "conflict";
+    case 500:
+      return "internal server error";
+    case 503:
+      return "service unavailable";
+    default:
+      return "unexpected status";
   }
 }
 
@@ -87,7 +94,8 @@ bool read_answer(MirCall call, std::string_view key, const json& body, MirReply&
   switch (call) {
     case MirCall::kGetStatus:
     case MirCall::kSetState:
-    case MirCall::kClearError: return read_status(body, reply.status, why);
+    case MirCall::kClearError:
+      return read_status(body, reply.status, why);
     case MirCall::kFindPosition: {
       if (!body.is_array()) return why = "not a list of positions", false;
       for (const json& position : body) {
@@ -104,16 +112,19 @@ bool read_answer(MirCall call, std::string_view key, const json& body, MirReply&
       copy_string(reply.guid, body["guid"]);
       return true;
     case MirCall::kPostMission:
-    case MirCall::kGetMission: return read_mission(body, reply, why);
+    case MirCall::kGetMission:
+      return read_mission(body, reply, why);
     case MirCall::kClearQueue:
-    case MirCall::kNone: return true;
+    case MirCall::kNone:
+      return true;
   }
   return true;
 }
 
 }  // namespace
 
-void decode_reply(const hal::HttpRequest& request, const hal::HttpResponse& response, MirReply& reply) noexcept {
+void decode_reply(const hal::HttpRequest& request, const hal::HttpResponse& response,
+                  MirReply& reply) noexcept {
   try {
     reply.call = static_cast<MirCall>(request.tag);
     reply.ok = false;

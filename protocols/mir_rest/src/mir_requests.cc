@@ -34,15 +34,24 @@ hal::HttpRequest request(hal::HttpMethod method, std::string_view path, MirCall 
 
 std::string_view to_string(MirCall call) noexcept {
   switch (call) {
-    case MirCall::kNone: return "none";
-    case MirCall::kGetStatus: return "GET /status";
-    case MirCall::kSetState: return "PUT /status (state_id)";
-    case MirCall::kClearError: return "PUT /status (clear_error)";
-    case MirCall::kFindPosition: return "GET /positions";
-    case MirCall::kPostPosition: return "POST /positions";
-    case MirCall::kPostMission: return "POST /mission_queue";
-    case MirCall::kGetMission: return "GET /mission_queue/{id}";
-    case MirCall::kClearQueue: return "DELETE /mission_queue";
+    case MirCall::kNone:
+      return "none";
+    case MirCall::kGetStatus:
+      return "GET /status";
+    case MirCall::kSetState:
+      return "PUT /status (state_id)";
+    case MirCall::kClearError:
+      return "PUT /status (clear_error)";
+    case MirCall::kFindPosition:
+      return "GET /positions";
+    case MirCall::kPostPosition:
+      return "POST /positions";
+    case MirCall::kPostMission:
+      return "POST /mission_queue";
+    case MirCall::kGetMission:
+      return "GET /mission_queue/{id}";
+    case MirCall::kClearQueue:
+      return "DELETE /mission_queue";
   }
   return "?";
 }
@@ -92,8 +101,10 @@ hal::HttpRequest post_position(std::string_view name, float x, float y, float ya
   }
   r.key.assign(name);
   // type_id 0: a plain robot position (PostPositions: map_id, name, orientation, pos_x, pos_y, type_id).
-  format_into(r.body, R"({{"name": "{}", "pos_x": {:.3f}, "pos_y": {:.3f}, "orientation": {:.2f}, "type_id": 0, "map_id": "{}"}})",
-              name, x, y, yaw_deg, map_id);
+  format_into(
+      r.body,
+      R"({{"name": "{}", "pos_x": {:.3f}, "pos_y": {:.3f}, "orientation": {:.2f}, "type_id": 0, "map_id": "{}"}})",
+      name, x, y, yaw_deg, map_id);
   if (r.body.empty()) r.path.clear();
   return r;
 }
@@ -105,8 +116,8 @@ hal::HttpRequest post_mission(std::string_view mission_guid, std::string_view pa
     r.path.clear();
     return r;
   }
-  format_into(r.body, R"({{"mission_id": "{}", "parameters": [{{"id": "{}", "value": "{}"}}]}})", mission_guid,
-              parameter, position_guid);
+  format_into(r.body, R"({{"mission_id": "{}", "parameters": [{{"id": "{}", "value": "{}"}}]}})",
+              mission_guid, parameter, position_guid);
   if (r.body.empty()) r.path.clear();
   return r;
 }

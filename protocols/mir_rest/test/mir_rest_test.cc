@@ -29,12 +29,14 @@ TEST(MirRequests, AreBuiltAsTheApiTakesThem) {
   EXPECT_EQ(clear_error().body.view(), R"({"clear_error": true})");
   const hal::HttpRequest mission = post_mission("a1b2-c3", "Position", "00ff-01");
   EXPECT_EQ(mission.path.view(), "/mission_queue");
-  EXPECT_EQ(mission.body.view(), R"({"mission_id": "a1b2-c3", "parameters": [{"id": "Position", "value": "00ff-01"}]})");
+  EXPECT_EQ(mission.body.view(),
+            R"({"mission_id": "a1b2-c3", "parameters": [{"id": "Position", "value": "00ff-01"}]})");
   EXPECT_EQ(get_mission(42).path.view(), "/mission_queue/42");
   EXPECT_EQ(clear_queue().method, hal::HttpMethod::kDelete);
   const hal::HttpRequest save = post_position("kit pickup", 1.5F, -2.0F, 90.0F, "5d2f-01");
-  EXPECT_EQ(save.body.view(),
-            R"({"name": "kit pickup", "pos_x": 1.500, "pos_y": -2.000, "orientation": 90.00, "type_id": 0, "map_id": "5d2f-01"})");
+  EXPECT_EQ(
+      save.body.view(),
+      R"({"name": "kit pickup", "pos_x": 1.500, "pos_y": -2.000, "orientation": 90.00, "type_id": 0, "map_id": "5d2f-01"})");
   // Names the API would need escaped, or guids that are not: no request (an empty path).
   EXPECT_TRUE(find_position("a\"b").path.empty());
   EXPECT_TRUE(post_mission("not a guid", "Position", "00ff").path.empty());
@@ -70,7 +72,8 @@ TEST(MirDecode, RefusalsMalformedJsonAndWrongTypesAreProblemsNotCrashes) {
   EXPECT_EQ(decode(get_status(), 500, "{}").problem.view(), "GET /status: HTTP 500 (internal server error)");
   EXPECT_EQ(decode(get_status(), 200, R"({"state_id": 3, "position": {)").problem.view(),
             "GET /status: malformed JSON in the answer (29 bytes)");
-  EXPECT_EQ(decode(get_status(), 200, R"({"state_id": "3"})").problem.view(), "GET /status: no number 'state_id'");
+  EXPECT_EQ(decode(get_status(), 200, R"({"state_id": "3"})").problem.view(),
+            "GET /status: no number 'state_id'");
   EXPECT_EQ(decode(get_status(), 200, R"([1, 2])").problem.view(), "GET /status: no number 'state_id'");
   EXPECT_EQ(decode(get_mission(3), 200, R"({"id": 3, "state": 7})").problem.view(),
             "GET /mission_queue/{id}: no string 'state'");

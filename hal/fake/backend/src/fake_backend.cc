@@ -177,7 +177,8 @@ Expected<void> FakeBackend::build_http() {
     auto server = MirSimServer::start(*mir.platform, clock_, options);
     if (!server) {
       Error error = std::move(server).error();
-      error.message = fmt::format("{}: MiR simulator for '{}': {}", board_.file, device.device, error.message);
+      error.message =
+          fmt::format("{}: MiR simulator for '{}': {}", board_.file, device.device, error.message);
       return error;
     }
     mir.server = std::move(*server);
@@ -218,8 +219,8 @@ Expected<std::unique_ptr<HttpClient>> FakeBackend::open_http(const HttpConfig& c
   const auto mir = std::find_if(mirs_.begin(), mirs_.end(),
                                 [&](const SimulatedMir& m) { return m.device == config.device; });
   if (mir == mirs_.end()) {
-    return make_error(ErrorCode::kNotFound,
-                      fmt::format("{}: no simulator for this HTTP device on board {}", config.device, board_.name));
+    return make_error(ErrorCode::kNotFound, fmt::format("{}: no simulator for this HTTP device on board {}",
+                                                        config.device, board_.name));
   }
   HttpConfig connected = config;
   connected.host = mir->host;

@@ -15,11 +15,16 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string_view state_text(int state_id) {
   switch (state_id) {
-    case 3: return "Ready";
-    case 4: return "Pause";
-    case 5: return "Executing";
-    case 12: return "Error";
-    default: return "Unknown";
+    case 3:
+      return "Ready";
+    case 4:
+      return "Pause";
+    case 5:
+      return "Executing";
+    case 12:
+      return "Error";
+    default:
+      return "Unknown";
   }
 }
 
@@ -90,7 +95,8 @@ void MirPlatform::advance_locked(Time now) {
       moved = dt > 0;
     }
   }
-  battery_ = std::max(0.0, battery_ - dt * (moved ? config_.drain_moving_percent_s : config_.drain_idle_percent_s));
+  battery_ =
+      std::max(0.0, battery_ - dt * (moved ? config_.drain_moving_percent_s : config_.drain_idle_percent_s));
   if (battery_ <= 0.0 && state_id_ != 12) {
     error_code_ = 10001;
     error_text_ = "Battery empty";
@@ -166,7 +172,10 @@ MirAnswer MirPlatform::handle(std::string_view method, std::string_view path, st
   if (path == "/positions" && method == "GET") {
     json list = json::array();
     for (const Position& p : positions_) {
-      list.push_back({{"guid", p.guid}, {"name", p.name}, {"type_id", 0}, {"map_id", config_.map_id},
+      list.push_back({{"guid", p.guid},
+                      {"name", p.name},
+                      {"type_id", 0},
+                      {"map_id", config_.map_id},
                       {"url", "/v2.0.0/positions/" + p.guid}});
     }
     return {200, list.dump()};
@@ -188,7 +197,8 @@ MirAnswer MirPlatform::handle(std::string_view method, std::string_view path, st
 
 MirAnswer MirPlatform::status_json() const {
   json errors = json::array();
-  if (state_id_ == 12) errors.push_back({{"code", error_code_}, {"description", error_text_}, {"module", "sim"}});
+  if (state_id_ == 12)
+    errors.push_back({{"code", error_code_}, {"description", error_text_}, {"module", "sim"}});
   int mission_queue_id = 0;
   std::string mission_text = "Waiting for new missions...";
   for (const Mission& m : queue_) {
@@ -248,11 +258,12 @@ MirAnswer MirPlatform::post_position(std::string_view body) {
       return error_answer(400, fmt::format("Missing number '{}'", key));
     }
   }
-  if (!request.contains("name") || !request["name"].is_string() || request["name"].get<std::string>().empty() ||
-      request["name"].get<std::string>().size() > 40) {
+  if (!request.contains("name") || !request["name"].is_string() ||
+      request["name"].get<std::string>().empty() || request["name"].get<std::string>().size() > 40) {
     return error_answer(400, "name: 1 to 40 characters");
   }
-  if (!request.contains("map_id") || request["map_id"] != config_.map_id) return error_answer(400, "Unknown map_id");
+  if (!request.contains("map_id") || request["map_id"] != config_.map_id)
+    return error_answer(400, "Unknown map_id");
   if (!request.contains("type_id") || !request["type_id"].is_number_integer()) {
     return error_answer(400, "Missing integer 'type_id'");
   }
@@ -262,7 +273,8 @@ MirAnswer MirPlatform::post_position(std::string_view body) {
     if (p.name == name) existing = &p;
   }
   if (existing == nullptr) {
-    positions_.push_back(Position{fmt::format("00000000-0000-4000-8000-{:012x}", next_guid_++), name, 0, 0, 0});
+    positions_.push_back(
+        Position{fmt::format("00000000-0000-4000-8000-{:012x}", next_guid_++), name, 0, 0, 0});
     existing = &positions_.back();
   }
   // The simulator keeps one position per name: saving a name again moves it (its guid stays).
@@ -281,14 +293,16 @@ MirAnswer MirPlatform::post_mission(std::string_view body) {
   std::string position_guid;
   if (request.contains("parameters") && request["parameters"].is_array()) {
     for (const json& parameter : request["parameters"]) {
-      if (parameter.is_object() && parameter.contains("id") && parameter["id"] == config_.position_parameter &&
-          parameter.contains("value") && parameter["value"].is_string()) {
+      if (parameter.is_object() && parameter.contains("id") &&
+          parameter["id"] == config_.position_parameter && parameter.contains("value") &&
+          parameter["value"].is_string()) {
         position_guid = parameter["value"].get<std::string>();
       }
     }
   }
   if (position(position_guid) == nullptr) {
-    return error_answer(400, fmt::format("parameter '{}' is not a known position", config_.position_parameter));
+    return error_answer(400,
+                        fmt::format("parameter '{}' is not a known position", config_.position_parameter));
   }
   queue_.push_back(Mission{next_mission_id_++, position_guid, "Pending"});
   const Mission& mission = queue_.back();

@@ -68,8 +68,8 @@ void MirSimServer::install_handlers(httplib::Server& server) {
         return;
       }
       const std::string path = req.path.substr(options_.base_path.size());
-      const MirAnswer answer = platform_.handle(method, path, req.body, req.get_header_value("Authorization"),
-                                                clock_.now().mono);
+      const MirAnswer answer =
+          platform_.handle(method, path, req.body, req.get_header_value("Authorization"), clock_.now().mono);
       res.status = answer.status;
       std::string body = answer.body;
       if (fault == MirServerFault::kMalformedJson) body = body.substr(0, body.size() / 2);
@@ -89,7 +89,8 @@ Expected<void> MirSimServer::listen() {
   if (port_ == 0) {
     const int port = server->bind_to_any_port(options_.address);
     if (port <= 0) {
-      return make_error(ErrorCode::kBusy, fmt::format("MiR simulator: cannot listen on {}", options_.address));
+      return make_error(ErrorCode::kBusy,
+                        fmt::format("MiR simulator: cannot listen on {}", options_.address));
     }
     port_ = static_cast<std::uint16_t>(port);
   } else if (!server->bind_to_port(options_.address, port_)) {

@@ -85,7 +85,8 @@ TEST_F(MirHttpTest, AnswersAreDecoded) {
   EXPECT_EQ(done.http_status, 200);
   ASSERT_TRUE(done.reply.ok) << done.reply.problem.view();
   EXPECT_EQ(done.reply.status.state_id, 3);
-  const HttpCompletion<MirReply> paused = call(*device_, protocol::mir::set_state(protocol::mir::kStatePause));
+  const HttpCompletion<MirReply> paused =
+      call(*device_, protocol::mir::set_state(protocol::mir::kStatePause));
   ASSERT_TRUE(paused.reply.ok) << paused.reply.problem.view();
   EXPECT_EQ(paused.reply.status.state_id, 4);
   EXPECT_EQ(platform_->snapshot().pause_requests, 1);
@@ -95,7 +96,8 @@ TEST_F(MirHttpTest, ServerErrorAndUnauthorizedAreNamed) {
   server_->set_fault(MirServerFault::kServerError);
   EXPECT_EQ(status().reply.problem.view(), "GET /status: HTTP 500 (internal server error)");
   server_->set_fault(MirServerFault::kUnauthorized);
-  EXPECT_EQ(status().reply.problem.view(), "GET /status: HTTP 401 (unauthorized: check the board's authorization)");
+  EXPECT_EQ(status().reply.problem.view(),
+            "GET /status: HTTP 401 (unauthorized: check the board's authorization)");
   server_->set_fault(MirServerFault::kNone);
   auto wrong = open("Basic d3Jvbmc=", 64 * 1024);
   EXPECT_EQ(call(*wrong, protocol::mir::get_status()).http_status, 401) << "the platform checks the header";
@@ -107,7 +109,8 @@ TEST_F(MirHttpTest, MalformedJsonIsAProblemNotACrash) {
   const HttpCompletion<MirReply> done = status();
   EXPECT_TRUE(done.transport.is_ok());
   EXPECT_FALSE(done.reply.ok);
-  EXPECT_NE(done.reply.problem.view().find("malformed JSON"), std::string_view::npos) << done.reply.problem.view();
+  EXPECT_NE(done.reply.problem.view().find("malformed JSON"), std::string_view::npos)
+      << done.reply.problem.view();
 }
 
 TEST_F(MirHttpTest, SlowAndMissingAnswersTimeOut) {

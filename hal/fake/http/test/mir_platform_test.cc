@@ -89,8 +89,12 @@ TEST_F(MirPlatformTest, TheBatteryDrainsFasterWhileDriving) {
 
 TEST_F(MirPlatformTest, SavesPositionsAndRefusesWhatTheApiRefuses) {
   const MirAnswer saved = call("POST", "/positions",
-                               json{{"name", "here"}, {"pos_x", 1.0}, {"pos_y", 2.0}, {"orientation", 45.0},
-                                    {"type_id", 0}, {"map_id", platform_.config().map_id}}
+                               json{{"name", "here"},
+                                    {"pos_x", 1.0},
+                                    {"pos_y", 2.0},
+                                    {"orientation", 45.0},
+                                    {"type_id", 0},
+                                    {"map_id", platform_.config().map_id}}
                                    .dump());
   EXPECT_EQ(saved.status, 201) << saved.body;
   const json list = json::parse(call("GET", "/positions").body);

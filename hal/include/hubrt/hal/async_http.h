@@ -25,8 +25,8 @@ struct HttpCompletion {
   // passed (timed_out). ok means an answer arrived: see http_status and reply.
   Status transport;
   bool timed_out = false;
-  int http_status = 0;  // 0 without an answer
-  Reply reply{};        // the decoder's work (left default without an answer)
+  int http_status = 0;             // 0 without an answer
+  Reply reply{};                   // the decoder's work (left default without an answer)
   FixedText<120> transport_error;  // HttpClient::last_error() of a failed send
 };
 

@@ -53,10 +53,14 @@ enum class HttpMethod : std::uint8_t { kGet, kPut, kPost, kDelete };
 // "GET", "PUT", "POST", "DELETE".
 [[nodiscard]] constexpr std::string_view to_string(HttpMethod method) noexcept {
   switch (method) {
-    case HttpMethod::kGet: return "GET";
-    case HttpMethod::kPut: return "PUT";
-    case HttpMethod::kPost: return "POST";
-    case HttpMethod::kDelete: return "DELETE";
+    case HttpMethod::kGet:
+      return "GET";
+    case HttpMethod::kPut:
+      return "PUT";
+    case HttpMethod::kPost:
+      return "POST";
+    case HttpMethod::kDelete:
+      return "DELETE";
   }
   return "?";
 }
@@ -107,7 +111,8 @@ class HttpClient {
 
 // "mir (http://192.168.12.20:80/api/v2.0.0)".
 [[nodiscard]] inline std::string describe_http(const HttpConfig& config) {
-  return config.device + " (http://" + config.host + ":" + std::to_string(config.port) + config.base_path + ")";
+  return config.device + " (http://" + config.host + ":" + std::to_string(config.port) + config.base_path +
+         ")";
 }
 
 }  // namespace hubrt::hal

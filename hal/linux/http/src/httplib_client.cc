@@ -79,20 +79,28 @@ class HttplibClient final : public HttpClient {
 
   static std::string_view describe(httplib::Error error) {
     switch (error) {
-      case httplib::Error::Connection: return "cannot connect (refused or unreachable)";
-      case httplib::Error::ConnectionTimeout: return "connect timed out";
-      case httplib::Error::Read: return "no (complete) answer within the read timeout";
-      case httplib::Error::Write: return "sending the request failed";
-      default: return "transfer failed";
+      case httplib::Error::Connection:
+        return "cannot connect (refused or unreachable)";
+      case httplib::Error::ConnectionTimeout:
+        return "connect timed out";
+      case httplib::Error::Read:
+        return "no (complete) answer within the read timeout";
+      case httplib::Error::Write:
+        return "sending the request failed";
+      default:
+        return "transfer failed";
     }
   }
 
   static ErrorCode code_of(httplib::Error error) {
     switch (error) {
-      case httplib::Error::Connection: return ErrorCode::kUnavailable;
+      case httplib::Error::Connection:
+        return ErrorCode::kUnavailable;
       case httplib::Error::ConnectionTimeout:
-      case httplib::Error::Read: return ErrorCode::kTimeout;
-      default: return ErrorCode::kIo;
+      case httplib::Error::Read:
+        return ErrorCode::kTimeout;
+      default:
+        return ErrorCode::kIo;
     }
   }
 
@@ -112,7 +120,8 @@ Expected<std::unique_ptr<HttpClient>> open_httplib(const HttpConfig& config) {
   if (config.connect_timeout <= Duration::zero() || config.read_timeout <= Duration::zero()) {
     return invalid("timeouts must be positive");
   }
-  if (!config.base_path.empty() && config.base_path.front() != '/') return invalid("base path must start with '/'");
+  if (!config.base_path.empty() && config.base_path.front() != '/')
+    return invalid("base path must start with '/'");
   if (config.authorization.find_first_of("\r\n") != std::string::npos) {
     return invalid("the authorization value contains a line break");
   }

@@ -61,9 +61,9 @@ struct MirReply {
   MirCall call = MirCall::kNone;
   bool ok = false;
   hal::FixedText<140> problem;
-  MirStatus status;                // kGetStatus, kSetState, kClearError (MiR answers the status)
-  hal::FixedText<40> guid;         // kFindPosition (found), kPostPosition (created)
-  int mission_id = 0;              // kPostMission, kGetMission
+  MirStatus status;                  // kGetStatus, kSetState, kClearError (MiR answers the status)
+  hal::FixedText<40> guid;           // kFindPosition (found), kPostPosition (created)
+  int mission_id = 0;                // kPostMission, kGetMission
   hal::FixedText<16> mission_state;  // kPostMission, kGetMission: Pending, Executing, Done, Aborted
 };
 
@@ -83,6 +83,7 @@ struct MirReply {
 
 // The HttpDecoder of the mir_com hub (threaded_async_http.h): reads `response` as the answer to
 // `request` (by its tag) into `reply`. Never throws.
-void decode_reply(const hal::HttpRequest& request, const hal::HttpResponse& response, MirReply& reply) noexcept;
+void decode_reply(const hal::HttpRequest& request, const hal::HttpResponse& response,
+                  MirReply& reply) noexcept;
 
 }  // namespace hubrt::protocol::mir

@@ -22,7 +22,8 @@ namespace hubrt::hal {
 // Turns an answer into the caller's Reply, on the worker thread (it may allocate, parse and
 // fail: it must not throw). `response.status` is the HTTP status; `reply` starts default.
 template <class Reply>
-using HttpDecoder = std::function<void(const HttpRequest& request, const HttpResponse& response, Reply& reply)>;
+using HttpDecoder =
+    std::function<void(const HttpRequest& request, const HttpResponse& response, Reply& reply)>;
 
 // A request timeout that covers one request on `config`: the connect timeout plus two read
 // timeouts (sending the request and waiting for the answer are each bounded by it).
@@ -167,14 +168,14 @@ class ThreadedAsyncHttp final : public AsyncHttp<Reply> {
 
   std::mutex mutex_;
   std::condition_variable wake_;
-  bool stopping_ = false;           // guarded by mutex_
-  HttpRequest waiting_;             // guarded by mutex_
-  std::uint64_t waiting_id_ = 0;    // guarded by mutex_
-  bool has_waiting_ = false;        // guarded by mutex_
-  Finished finished_;               // guarded by mutex_
-  std::uint64_t finished_id_ = 0;   // guarded by mutex_
-  HttpRequest on_close_;            // guarded by mutex_
-  bool has_on_close_ = false;       // guarded by mutex_
+  bool stopping_ = false;          // guarded by mutex_
+  HttpRequest waiting_;            // guarded by mutex_
+  std::uint64_t waiting_id_ = 0;   // guarded by mutex_
+  bool has_waiting_ = false;       // guarded by mutex_
+  Finished finished_;              // guarded by mutex_
+  std::uint64_t finished_id_ = 0;  // guarded by mutex_
+  HttpRequest on_close_;           // guarded by mutex_
+  bool has_on_close_ = false;      // guarded by mutex_
 
   // The owner's (submit/poll) only.
   std::uint64_t last_id_ = 0;

@@ -17,11 +17,11 @@ namespace hubrt::hal::fake {
 
 struct MirPlatformConfig {
   std::string robot_name = "MiR_sim";
-  std::string authorization;            // the Authorization value it accepts; empty: any
+  std::string authorization;  // the Authorization value it accepts; empty: any
   std::string move_mission_guid = "a1b2c3d4-0000-4000-8000-000000000001";  // "move to position"
-  std::string position_parameter = "Position";          // its position parameter's id
+  std::string position_parameter = "Position";                             // its position parameter's id
   std::string map_id = "5d2f1a3c-0000-4000-8000-000000000001";
-  double speed_m_s = 1.0;              // MiR100: up to 1.5 m/s
+  double speed_m_s = 1.0;  // MiR100: up to 1.5 m/s
   double turn_deg_s = 90.0;
   double battery_start_percent = 90.0;
   double drain_idle_percent_s = 0.002;

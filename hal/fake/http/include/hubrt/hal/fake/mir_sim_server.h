@@ -24,11 +24,11 @@ namespace hubrt::hal::fake {
 
 enum class MirServerFault : std::uint8_t {
   kNone,
-  kServerError,   // every request: HTTP 500
-  kUnauthorized,  // every request: HTTP 401, whatever the header
-  kSlow,          // every answer goes out after slow_delay (longer than a client's read timeout)
-  kNoAnswer,      // requests are read, never answered (until the fault is cleared or the server stops)
-  kMalformedJson, // 200 with a body cut in the middle of its JSON
+  kServerError,    // every request: HTTP 500
+  kUnauthorized,   // every request: HTTP 401, whatever the header
+  kSlow,           // every answer goes out after slow_delay (longer than a client's read timeout)
+  kNoAnswer,       // requests are read, never answered (until the fault is cleared or the server stops)
+  kMalformedJson,  // 200 with a body cut in the middle of its JSON
 };
 
 // "server_error" ... as /sim/fault names them; kNotFound for another name (fault none: "answer").
