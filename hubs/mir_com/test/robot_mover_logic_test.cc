@@ -4,6 +4,8 @@
 #include "robot_mover_logic.h"
 
 #include <algorithm>
+#include <array>
+#include <string>
 
 #include "mir_logic_fixture.h"
 
@@ -182,6 +184,24 @@ TEST_P(RobotMoverFaultTest, IsAClearErrorAndTheNodeRecovers) {
   EXPECT_EQ(platform_->snapshot().state_id, 4);
 }
 
+std::string fault_name(const ::testing::TestParamInfo<FaultCase>& param) {
+  switch (param.param.fault) {
+    case DeviceFault::kNone:
+      return "none";
+    case DeviceFault::kServerError:
+      return "server_error";
+    case DeviceFault::kUnauthorized:
+      return "unauthorized";
+    case DeviceFault::kNoAnswer:
+      return "no_answer";
+    case DeviceFault::kRefused:
+      return "refused";
+    case DeviceFault::kMalformedJson:
+      return "malformed_json";
+  }
+  return "unknown";
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Faults, RobotMoverFaultTest,
     ::testing::Values(
@@ -189,7 +209,8 @@ INSTANTIATE_TEST_SUITE_P(
         FaultCase{DeviceFault::kUnauthorized, "HTTP 401 (unauthorized: check the board's authorization)"},
         FaultCase{DeviceFault::kNoAnswer, "timeout: no answer within the request timeout"},
         FaultCase{DeviceFault::kRefused, "unavailable: cannot connect (refused or unreachable)"},
-        FaultCase{DeviceFault::kMalformedJson, "GET /status: malformed JSON in the answer"}));
+        FaultCase{DeviceFault::kMalformedJson, "GET /status: malformed JSON in the answer"}),
+    fault_name);
 
 TEST_F(RobotMoverTest, CommandsForAnotherRobotOrWithBadFieldsAreRejected) {
   RobotMoverLogic logic = make_logic();
