@@ -121,6 +121,18 @@ std::string modbus_table(const hal::BoardConfig& board) {
   return out;
 }
 
+std::string http_table(const hal::BoardConfig& board) {
+  std::string out = "| HTTP device | endpoint | timeouts | authorization |\n|---|---|---|---|\n";
+  for (const hal::BoardHttpDevice& device : board.http) {
+    const hal::HttpConfig& c = device.config;
+    out += fmt::format("| `{}` | `http://{}:{}{}` | connect {}, read {} | {} |\n", c.device, c.host, c.port,
+                       c.base_path, milliseconds(c.connect_timeout), milliseconds(c.read_timeout),
+                       device.authorization_file.empty() ? std::string("none")
+                                                         : fmt::format("`{}`", device.authorization_file));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<int> rpi_header_pin(std::string_view chip_label, unsigned line) {
@@ -135,6 +147,7 @@ std::string wiring_tables(const hal::BoardConfig& board) {
   if (!board.chips.empty()) out += gpio_table(board) + "\n";
   if (!board.can.empty()) out += can_table(board) + "\n";
   if (!board.modbus.empty()) out += modbus_table(board) + "\n";
+  if (!board.http.empty()) out += http_table(board) + "\n";
   out.pop_back();  // one newline at the end, not a blank line
   return out;
 }

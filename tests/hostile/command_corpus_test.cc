@@ -29,6 +29,10 @@
 #include "dock_typed.h"
 #include "lamp_reflect.h"
 #include "lamp_typed.h"
+#include "mir_com_reflect.h"
+#include "mir_com_typed.h"
+#include "pose_saver_reflect.h"
+#include "robot_mover_reflect.h"
 #include "rsp_reflect.h"
 #include "rsp_typed.h"
 #include "signal_lamp_reflect.h"
@@ -309,6 +313,9 @@ TEST(CommandCorpus, EveryStringFieldOfEveryCommandTypeRejectsBadTextAndReportsIt
   run_corpus<hub_msgs::ToolEcuCommandView, hub_msgs::ToolEcuState>();
   run_corpus<hub_msgs::LampCommandView, hub_msgs::LampState>();
   run_corpus<hub_msgs::SignalLampCommandView, hub_msgs::SignalLampState>();
+  run_corpus<hub_msgs::RobotMoverCommandView, hub_msgs::RobotMoverState>();
+  run_corpus<hub_msgs::PoseSaverCommandView, hub_msgs::PoseSaverState>();
+  run_corpus<hub_msgs::MirComCommandView, hub_msgs::MirComState>();
   run_check_fields_corpus<hub_msgs_msg_dds__StationCommand_>();
 
   // Every Command type built into hubrt (target_type, target_name, action first) is in

@@ -89,6 +89,30 @@ Expected<void> valve_fault(hal::fake::PneumaticValve& valve, std::size_t confirm
   return unknown_fault(request.device, "valve", fault, "stick, unstick, fail_confirm, repair_confirm");
 }
 
+// The MiR100 simulator: the REST server's faults, the server going away, the platform's own error
+// and battery.
+Expected<void> mir_fault(hal::fake::MirPlatform& platform, hal::fake::MirSimServer& server,
+                         const FaultRequest& request, Time now) {
+  const std::string_view fault = request.fault;
+  if (const auto kind = hal::fake::parse_mir_fault(fault); kind.is_ok()) {
+    server.set_fault(kind.value());
+  } else if (fault == "go_down") {
+    server.go_down();
+  } else if (fault == "come_back") {
+    return server.come_back();
+  } else if (fault == "platform_error") {
+    platform.inject_error(request.value == 0 ? 3001 : static_cast<int>(request.value),
+                          "Simulated platform error", now);
+  } else if (fault == "battery") {
+    platform.set_battery_percent(request.value);
+  } else {
+    return unknown_fault(request.device, "MiR100 platform", fault,
+                         "server_error, unauthorized, slow, stop_answering, malformed_json, answer, go_down, "
+                         "come_back, platform_error, battery");
+  }
+  return {};
+}
+
 }  // namespace
 
 Expected<void> apply_input(hal::fake::FakeBackend& fake, std::string_view signal, bool active) {
@@ -111,6 +135,9 @@ Expected<void> apply_input(hal::fake::FakeBackend& fake, std::string_view signal
 
 Expected<void> apply_fault(hal::fake::FakeBackend& fake, const hal::BoardConfig& board,
                            const FaultRequest& request, Time now) {
+  if (auto* platform = fake.mir_platform(request.device); platform != nullptr) {
+    return mir_fault(*platform, *fake.mir_server(request.device), request, now);
+  }
   if (auto* tool = fake.smart_tool(request.device); tool != nullptr) return smart_tool_fault(*tool, request);
   if (auto* drive = fake.lift_drive(request.device); drive != nullptr) {
     auto* server = fake.lift_drive_server(request.device);
@@ -140,8 +167,8 @@ Expected<void> apply_fault(hal::fake::FakeBackend& fake, const hal::BoardConfig&
   }
   return make_error(
       ErrorCode::kNotFound,
-      fmt::format("'{}' is not a simulated device (smart tool bus, lift drive, pressure supply or "
-                  "valve) of this board",
+      fmt::format("'{}' is not a simulated device (smart tool bus, lift drive, MiR100, pressure supply "
+                  "or valve) of this board",
                   request.device));
 }
 

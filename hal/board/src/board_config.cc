@@ -1,6 +1,9 @@
 #include "hubrt/hal/board/board_config.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 
 namespace hubrt::hal {
 namespace {
@@ -28,6 +31,34 @@ const BoardCanBus* BoardConfig::find_can(std::string_view bus) const noexcept {
 const BoardModbusDevice* BoardConfig::find_modbus(std::string_view device) const noexcept {
   return find_by(modbus, device,
                  [](const BoardModbusDevice& d) -> const std::string& { return d.config.device; });
+}
+
+const BoardHttpDevice* BoardConfig::find_http(std::string_view device) const noexcept {
+  return find_by(http, device,
+                 [](const BoardHttpDevice& d) -> const std::string& { return d.config.device; });
+}
+
+Expected<std::string> load_http_authorization(const BoardHttpDevice& device) {
+  if (device.authorization_file.empty()) return device.config.authorization;
+  const std::string& path = device.authorization_file;
+  std::ifstream in(path);
+  if (!in) {
+    const int error = errno;
+    return make_error(
+        error == EACCES ? ErrorCode::kPermissionDenied : ErrorCode::kNotFound,
+        device.config.device + ": cannot read authorization_file " + path + ": " + std::strerror(error));
+  }
+  std::string line;
+  std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const bool control = std::any_of(line.begin(), line.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (line.empty() || line.size() > 512 || control) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      device.config.device + ": authorization_file " + path +
+                          " must hold one line of at most 512 printable bytes (e.g. 'Basic <base64>')");
+  }
+  return line;
 }
 
 const BoardGpioChip* BoardConfig::find_chip(std::string_view alias) const noexcept {

@@ -18,6 +18,9 @@ std::string declared_as(const BoardConfig& board, std::string_view name) {
   if (const BoardModbusDevice* device = board.find_modbus(name)) {
     return fmt::format("a Modbus device (line {})", device->where.line);
   }
+  if (const BoardHttpDevice* device = board.find_http(name)) {
+    return fmt::format("an HTTP device (line {})", device->where.line);
+  }
   return {};
 }
 
@@ -62,8 +65,13 @@ Expected<void> check_requirements(const BoardConfig& board, const BoardRequireme
       !ok) {
     return ok;
   }
-  return check_kind(board, required, "Modbus device", required.modbus_devices,
-                    [&](const std::string& n) { return board.find_modbus(n) != nullptr; });
+  if (auto ok = check_kind(board, required, "Modbus device", required.modbus_devices,
+                           [&](const std::string& n) { return board.find_modbus(n) != nullptr; });
+      !ok) {
+    return ok;
+  }
+  return check_kind(board, required, "HTTP device", required.http_devices,
+                    [&](const std::string& n) { return board.find_http(n) != nullptr; });
 }
 
 }  // namespace hubrt::hal

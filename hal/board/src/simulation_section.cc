@@ -198,6 +198,46 @@ Expected<void> parse_modbus_devices(const YamlMap& simulation, BoardConfig& boar
   return {};
 }
 
+// http.<device>: {simulator: mir100, robot_name, speed_m_s, positions: {name: [x, y, yaw_deg]}}.
+Expected<void> parse_http_devices(const YamlMap& simulation, BoardConfig& board, SimulationConfig& sim) {
+  auto devices = simulation.named_maps("http");
+  if (!devices) return std::move(devices).error();
+  for (const auto& [name, map] : *devices) {
+    if (auto ok = map.only_keys({"simulator", "robot_name", "speed_m_s", "positions"}); !ok) return ok;
+    const BoardHttpDevice* http = board.find_http(name);
+    if (http == nullptr) return map.error(fmt::format("'{}' is not an HTTP device of this board", name));
+    SimHttpDevice device;
+    device.device = name;
+    device.where = where(map);
+    auto simulator = map.choice("simulator", {"mir100"});
+    if (!simulator) return std::move(simulator).error();
+    device.simulator = *simulator;
+    auto robot = map.string_or("robot_name", "MiR_sim");
+    if (!robot) return std::move(robot).error();
+    device.robot_name = *robot;
+    auto speed = map.number_or("speed_m_s", 1.0, 0.05, 2.0);
+    if (!speed) return std::move(speed).error();
+    device.speed_m_s = *speed;
+    auto positions = map.map("positions");
+    if (!positions) return std::move(positions).error();
+    for (const std::string& position : positions->keys()) {
+      const YAML::Node node = positions->node()[position];
+      if (!node.IsSequence() || node.size() != 3) {
+        return positions->error_at(position, "a position is [x_m, y_m, yaw_deg]");
+      }
+      SimMirPosition p;
+      p.name = position;
+      p.x = node[0].as<double>();
+      p.y = node[1].as<double>();
+      p.yaw_deg = node[2].as<double>();
+      device.positions.push_back(p);
+    }
+    if (device.positions.empty()) return map.error_at("positions", "name at least one position");
+    sim.http.push_back(std::move(device));
+  }
+  return {};
+}
+
 // Every line must exist on the fake chips, and every Modbus device needs its simulator.
 Expected<void> check_complete(const YamlMap& simulation, const BoardConfig& board,
                               const SimulationConfig& sim) {
@@ -225,6 +265,16 @@ Expected<void> check_complete(const YamlMap& simulation, const BoardConfig& boar
                       device.config.device, device.where.line, device.config.device));
     }
   }
+  for (const BoardHttpDevice& device : board.http) {
+    const bool simulated = std::any_of(sim.http.begin(), sim.http.end(), [&](const SimHttpDevice& d) {
+      return d.device == device.config.device;
+    });
+    if (!simulated) {
+      return simulation.error(
+          fmt::format("HTTP device '{}' (line {}) has no simulator: add simulation.http.{}",
+                      device.config.device, device.where.line, device.config.device));
+    }
+  }
   return {};
 }
 
@@ -232,7 +282,7 @@ Expected<void> check_complete(const YamlMap& simulation, const BoardConfig& boar
 
 Expected<void> parse_simulation(const YamlMap& simulation, BoardConfig& board) {
   if (auto ok = simulation.only_keys(
-          {"chip_lines", "pressure_supplies", "valves", "dock_sensors", "inputs", "can", "modbus"});
+          {"chip_lines", "pressure_supplies", "valves", "dock_sensors", "inputs", "can", "modbus", "http"});
       !ok) {
     return ok;
   }
@@ -258,6 +308,9 @@ Expected<void> parse_simulation(const YamlMap& simulation, BoardConfig& board) {
   }
   if (simulation.has("modbus")) {
     if (auto ok = parse_modbus_devices(simulation, board, sim); !ok) return ok;
+  }
+  if (simulation.has("http")) {
+    if (auto ok = parse_http_devices(simulation, board, sim); !ok) return ok;
   }
   if (auto ok = check_complete(simulation, board, sim); !ok) return ok;
   board.simulation = std::move(sim);

@@ -33,12 +33,12 @@ class BoardRequirementsTest : public ::testing::Test {
 
 TEST_F(BoardRequirementsTest, PassesWhenEverythingIsThereAsTheRightKind) {
   const BoardRequirements needs{
-      "dock_ecu", {"dock.slot.smart_tool"}, {"dock.slot.filter_tool"}, {"tool_bus"}, {}};
+      "dock_ecu", {"dock.slot.smart_tool"}, {"dock.slot.filter_tool"}, {"tool_bus"}, {}, {}};
   EXPECT_TRUE(check_requirements(board_, needs).is_ok());
 }
 
 TEST_F(BoardRequirementsTest, NamesTheLineOfADeclarationOfTheWrongKind) {
-  const BoardRequirements needs{"dock_ecu", {"dock.slot.filter_tool"}, {}, {}, {}};
+  const BoardRequirements needs{"dock_ecu", {"dock.slot.filter_tool"}, {}, {}, {}, {}};
   auto checked = check_requirements(board_, needs);
   ASSERT_FALSE(checked.is_ok());
   EXPECT_EQ(checked.error().code, ErrorCode::kFailedPrecondition);
@@ -48,15 +48,20 @@ TEST_F(BoardRequirementsTest, NamesTheLineOfADeclarationOfTheWrongKind) {
 }
 
 TEST_F(BoardRequirementsTest, SaysWhatIsMissing) {
-  const BoardRequirements needs{"dock_ecu", {"dock.slot.smart_tool"}, {}, {}, {"lift_drive"}};
+  const BoardRequirements needs{"dock_ecu", {"dock.slot.smart_tool"}, {}, {}, {"lift_drive"}, {}};
   auto checked = check_requirements(board_, needs);
   ASSERT_FALSE(checked.is_ok());
   EXPECT_EQ(checked.error().message,
             "hub dock_ecu needs Modbus device 'lift_drive' but boards/x.yaml does not declare it");
+  const BoardRequirements rest{"dock_ecu", {}, {}, {}, {}, {"mir"}};
+  checked = check_requirements(board_, rest);
+  ASSERT_FALSE(checked.is_ok());
+  EXPECT_EQ(checked.error().message,
+            "hub dock_ecu needs HTTP device 'mir' but boards/x.yaml does not declare it");
 }
 
 TEST_F(BoardRequirementsTest, ABusIsNotAnOutput) {
-  const BoardRequirements needs{"dock_ecu", {}, {"tool_bus"}, {}, {}};
+  const BoardRequirements needs{"dock_ecu", {}, {"tool_bus"}, {}, {}, {}};
   auto checked = check_requirements(board_, needs);
   ASSERT_FALSE(checked.is_ok());
   EXPECT_EQ(checked.error().message,
@@ -64,7 +69,7 @@ TEST_F(BoardRequirementsTest, ABusIsNotAnOutput) {
 }
 
 TEST_F(BoardRequirementsTest, RejectsABoardWiredForAnotherHub) {
-  const BoardRequirements needs{"tool_ecu", {}, {}, {}, {}};
+  const BoardRequirements needs{"tool_ecu", {}, {}, {}, {}, {}};
   auto checked = check_requirements(board_, needs);
   ASSERT_FALSE(checked.is_ok());
   EXPECT_EQ(checked.error().message, "boards/x.yaml (board x) is wired for hub dock_ecu, not tool_ecu");

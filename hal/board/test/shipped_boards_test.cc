@@ -19,17 +19,20 @@ const BoardRequirements kToolEcu{
      "tool.arm.home", "tool.arm.pre_home", "tool.arm.out_of_range"},
     {"tool.run_forward", "tool.run_reverse"},
     {"tool_bus"},
-    {"lift_drive"}};
+    {"lift_drive"},
+    {}};
 const BoardRequirements kRspEcu{
     "rsp_ecu",
     {"rsp.tool_id.ladder_frame_tool", "rsp.tool_id.smart_tool", "rsp.tool_id.filter_tool",
      "rsp.gripper.confirm_a", "rsp.gripper.confirm_b", "rsp.pressure_ok"},
     {"rsp.lock_valve", "rsp.gripper_valve"},
     {},
+    {},
     {}};
 const BoardRequirements kDockEcu{
     "dock_ecu",
     {"dock.slot.ladder_frame_tool", "dock.slot.filter_tool", "dock.slot.smart_tool", "dock.slot.spare"},
+    {},
     {},
     {},
     {}};

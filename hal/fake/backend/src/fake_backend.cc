@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/hal/common/debounced_input.h"
+#include "hubrt/hal/httplib/open_httplib.h"
 #include "hubrt/hal/libmodbus/open_libmodbus.h"
 
 namespace hubrt::hal::fake {
@@ -41,6 +42,7 @@ Expected<std::unique_ptr<FakeBackend>> FakeBackend::create(const BoardConfig& bo
   if (auto ok = backend->build_gpio(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_can(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_modbus(); !ok) return std::move(ok).error();
+  if (auto ok = backend->build_http(); !ok) return std::move(ok).error();
   return backend;
 }
 
@@ -145,6 +147,46 @@ Expected<void> FakeBackend::build_modbus() {
   return {};
 }
 
+Expected<void> FakeBackend::build_http() {
+  for (const SimHttpDevice& device : board_.simulation->http) {
+    const BoardHttpDevice* http = board_.find_http(device.device);
+    assert(http != nullptr);  // checked by the loader
+    if (!loopback(http->config.host)) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: simulated HTTP device '{}' must listen on a loopback address "
+                                    "(127.x.x.x), not '{}'",
+                                    board_.file, device.device, http->config.host));
+    }
+    MirPlatformConfig config;
+    config.robot_name = device.robot_name;
+    config.authorization = http->config.authorization;
+    config.speed_m_s = device.speed_m_s;
+    const SimMirPosition& start = device.positions.front();
+    config.start_x = start.x;
+    config.start_y = start.y;
+    config.start_yaw_deg = start.yaw_deg;
+    SimulatedMir mir;
+    mir.device = device.device;
+    mir.host = http->config.host;
+    mir.platform = std::make_unique<MirPlatform>(config, clock_.now().mono);
+    for (const SimMirPosition& p : device.positions) mir.platform->add_position(p.name, p.x, p.y, p.yaw_deg);
+    MirSimServerOptions options;
+    options.address = http->config.host;
+    options.port = http->config.port;
+    options.base_path = http->config.base_path;
+    auto server = MirSimServer::start(*mir.platform, clock_, options);
+    if (!server) {
+      Error error = std::move(server).error();
+      error.message =
+          fmt::format("{}: MiR simulator for '{}': {}", board_.file, device.device, error.message);
+      return error;
+    }
+    mir.server = std::move(*server);
+    mirs_.push_back(std::move(mir));
+  }
+  return {};
+}
+
 Expected<std::unique_ptr<DigitalInput>> FakeBackend::open_input(const DigitalInputConfig& config) {
   auto input = gpio_.open_input(config);
   if (!input) return input;
@@ -171,6 +213,33 @@ Expected<std::unique_ptr<ModbusClient>> FakeBackend::open_modbus(const ModbusCon
   ModbusConfig connected = config;
   connected.endpoint = ModbusTcpEndpoint{lift->host, lift->server->port()};
   return libmodbus::open_libmodbus(connected, clock_);
+}
+
+Expected<std::unique_ptr<HttpClient>> FakeBackend::open_http(const HttpConfig& config) {
+  const auto mir = std::find_if(mirs_.begin(), mirs_.end(),
+                                [&](const SimulatedMir& m) { return m.device == config.device; });
+  if (mir == mirs_.end()) {
+    return make_error(ErrorCode::kNotFound, fmt::format("{}: no simulator for this HTTP device on board {}",
+                                                        config.device, board_.name));
+  }
+  HttpConfig connected = config;
+  connected.host = mir->host;
+  connected.port = mir->server->port();
+  return httplib_client::open_httplib(connected);
+}
+
+MirPlatform* FakeBackend::mir_platform(std::string_view http_device) noexcept {
+  for (SimulatedMir& mir : mirs_) {
+    if (mir.device == http_device) return mir.platform.get();
+  }
+  return nullptr;
+}
+
+MirSimServer* FakeBackend::mir_server(std::string_view http_device) noexcept {
+  for (SimulatedMir& mir : mirs_) {
+    if (mir.device == http_device) return mir.server.get();
+  }
+  return nullptr;
 }
 
 PneumaticValve* FakeBackend::valve(std::string_view output_signal) noexcept {

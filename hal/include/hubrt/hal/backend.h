@@ -7,6 +7,7 @@
 #include "hubrt/base/status.h"
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/digital_io.h"
+#include "hubrt/hal/http_client.h"
 #include "hubrt/hal/modbus_client.h"
 
 namespace hubrt::hal {
@@ -25,6 +26,11 @@ class Backend {
   virtual Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) = 0;
   virtual Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) = 0;
   virtual Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) = 0;
+  // An HTTP client for a REST device (a MiR100). Not pure: a backend without HTTP devices (the
+  // test doubles) says so. Errors: kNotFound (this backend has none), the backend's own.
+  virtual Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) {
+    return make_error(ErrorCode::kNotFound, config.device + ": this backend opens no HTTP devices");
+  }
 
  protected:
   Backend() = default;

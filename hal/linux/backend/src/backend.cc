@@ -1,6 +1,7 @@
 #include "hubrt/hal/linux/backend.h"
 
 #include "hubrt/hal/common/debounced_input.h"
+#include "hubrt/hal/httplib/open_httplib.h"
 #include "hubrt/hal/libmodbus/open_libmodbus.h"
 #include "hubrt/hal/linux/gpiod_lines.h"
 #include "hubrt/hal/socketcan/open_socketcan.h"
@@ -23,6 +24,10 @@ Expected<std::unique_ptr<CanBus>> LinuxBackend::open_can(const CanConfig& config
 
 Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusConfig& config) {
   return libmodbus::open_libmodbus(config);
+}
+
+Expected<std::unique_ptr<HttpClient>> LinuxBackend::open_http(const HttpConfig& config) {
+  return httplib_client::open_httplib(config);
 }
 
 }  // namespace hubrt::hal

@@ -12,6 +12,7 @@
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/common/gpio_chip_selector.h"
 #include "hubrt/hal/digital_io.h"
+#include "hubrt/hal/http_client.h"
 #include "hubrt/hal/modbus_client.h"
 
 namespace hubrt::hal {
@@ -48,6 +49,15 @@ struct BoardCanBus {
 
 struct BoardModbusDevice {
   ModbusConfig config;  // config.device is the logical name; TCP port 0 = the simulator's port
+  SourceLocation where;
+};
+
+struct BoardHttpDevice {
+  // config.device is the logical name; config.authorization stays empty here (the secret is in
+  // authorization_file, read when the device is opened: load_http_authorization()), except on
+  // simulation boards, which may give it inline.
+  HttpConfig config;
+  std::string authorization_file;  // empty: none (or inline on a simulation board)
   SourceLocation where;
 };
 
@@ -94,6 +104,20 @@ struct SimModbusDevice {
   SourceLocation where;
 };
 
+struct SimMirPosition {
+  std::string name;
+  double x = 0, y = 0, yaw_deg = 0;
+};
+
+struct SimHttpDevice {
+  std::string device;     // HTTP device name (key under http:)
+  std::string simulator;  // "mir100"
+  std::string robot_name;
+  std::vector<SimMirPosition> positions;  // the map's named positions; the platform starts at the first
+  double speed_m_s = 1.0;
+  SourceLocation where;
+};
+
 struct SimulationConfig {
   unsigned chip_lines = 32;  // lines of every fake chip
   std::vector<SimPressureSupplyConfig> pressure_supplies;
@@ -102,6 +126,7 @@ struct SimulationConfig {
   std::vector<SimInputLevel> inputs;
   std::vector<SimCanDevice> can;
   std::vector<SimModbusDevice> modbus;
+  std::vector<SimHttpDevice> http;
 };
 
 struct BoardConfig {
@@ -115,6 +140,7 @@ struct BoardConfig {
   std::vector<BoardOutput> outputs;
   std::vector<BoardCanBus> can;
   std::vector<BoardModbusDevice> modbus;
+  std::vector<BoardHttpDevice> http;
   std::optional<SimulationConfig> simulation;
 
   // Look-ups by logical name; nullptr when absent. Never allocate.
@@ -122,8 +148,15 @@ struct BoardConfig {
   [[nodiscard]] const BoardOutput* find_output(std::string_view signal) const noexcept;
   [[nodiscard]] const BoardCanBus* find_can(std::string_view bus) const noexcept;
   [[nodiscard]] const BoardModbusDevice* find_modbus(std::string_view device) const noexcept;
+  [[nodiscard]] const BoardHttpDevice* find_http(std::string_view device) const noexcept;
   [[nodiscard]] const BoardGpioChip* find_chip(std::string_view alias) const noexcept;
   [[nodiscard]] bool wired_for(std::string_view hub) const noexcept;
 };
+
+// The Authorization header value of `device`: its inline value (simulation boards), or the first
+// line of its authorization_file (e.g. "Basic <base64>", as MiR's REST API takes it), or empty
+// when it has neither. Errors (naming the device and file): kNotFound / kPermissionDenied (the
+// file), kInvalidArgument (empty, over 512 bytes, a control character).
+Expected<std::string> load_http_authorization(const BoardHttpDevice& device);
 
 }  // namespace hubrt::hal

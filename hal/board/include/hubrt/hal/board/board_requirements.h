@@ -15,6 +15,7 @@ struct BoardRequirements {
   std::vector<std::string> outputs;         // logical output signals
   std::vector<std::string> can_buses;       // CAN bus names
   std::vector<std::string> modbus_devices;  // Modbus device names
+  std::vector<std::string> http_devices;    // HTTP (REST) device names
 };
 
 // Checks that `board` is wired for `required.hub` and declares every required signal, bus and

@@ -17,6 +17,8 @@
 #include "hubrt/hal/fake/fake_gpio.h"
 #include "hubrt/hal/fake/lift_drive.h"
 #include "hubrt/hal/fake/lift_drive_server.h"
+#include "hubrt/hal/fake/mir_platform.h"
+#include "hubrt/hal/fake/mir_sim_server.h"
 #include "hubrt/hal/fake/pneumatic_valve.h"
 #include "hubrt/hal/fake/pressure_supply.h"
 #include "hubrt/hal/fake/settable_input.h"
@@ -52,6 +54,9 @@ class FakeBackend final : public Backend {
   // A real libmodbus client connected to the simulator of config.device (its port put in for the
   // board's port 0). Errors: kNotFound (no simulator for that device), those of open_libmodbus.
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
+  // A real cpp-httplib client connected to the MiR simulator of config.device (its port put in).
+  // Errors: kNotFound (no simulator for that device), those of open_httplib.
+  Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) override;
 
   // --- Test hooks, by logical name (nullptr when the board has no such thing) --------------------
   [[nodiscard]] FakeGpio& gpio() noexcept { return gpio_; }
@@ -64,6 +69,8 @@ class FakeBackend final : public Backend {
   [[nodiscard]] SmartToolSimulator* smart_tool(std::string_view can_bus) noexcept;
   [[nodiscard]] LiftDrive* lift_drive(std::string_view modbus_device) noexcept;
   [[nodiscard]] LiftDriveServer* lift_drive_server(std::string_view modbus_device) noexcept;
+  [[nodiscard]] MirPlatform* mir_platform(std::string_view http_device) noexcept;
+  [[nodiscard]] MirSimServer* mir_server(std::string_view http_device) noexcept;
 
   // The chip and line a signal is wired to, for the chip's own hooks (history, faults).
   struct Wiring {
@@ -96,7 +103,15 @@ class FakeBackend final : public Backend {
     std::unique_ptr<LiftDriveServer> server;
   };
 
+  struct SimulatedMir {
+    std::string device;
+    std::string host;
+    std::unique_ptr<MirPlatform> platform;
+    std::unique_ptr<MirSimServer> server;
+  };
+
   FakeBackend(const BoardConfig& board, const Clock& clock);
+  Expected<void> build_http();
   Expected<void> build_gpio();
   Expected<void> build_can();
   Expected<void> build_modbus();
@@ -112,6 +127,7 @@ class FakeBackend final : public Backend {
   VirtualCanNetwork can_network_;
   std::vector<std::pair<std::string, std::unique_ptr<SmartToolSimulator>>> smart_tools_;  // after the network
   std::vector<SimulatedLift> lifts_;
+  std::vector<SimulatedMir> mirs_;
 };
 
 }  // namespace hubrt::hal::fake

@@ -1,5 +1,5 @@
 // The Backend for real hardware: GPIO through libgpiod v1, CAN through SocketCAN raw sockets,
-// Modbus through libmodbus.
+// Modbus through libmodbus, HTTP (REST devices) through cpp-httplib.
 #pragma once
 
 #include "hubrt/hal/backend.h"
@@ -20,6 +20,8 @@ class LinuxBackend final : public Backend {
   Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) override;
   Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) override;
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
+  // cpp-httplib (http/): errors of httplib_client::open_httplib.
+  Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) override;
 };
 
 }  // namespace hubrt::hal
