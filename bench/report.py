@@ -11,6 +11,8 @@ import os
 import sys
 from collections import defaultdict
 
+from report_security import security_section  # bench/report_security.py, next to this file
+
 # DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
 ROS1_P50_MS = 0.34
 ROS1_P99_MS = 0.43
@@ -401,6 +403,7 @@ def main():
     heartbeat_section(report, load(args.results, "heartbeat.json"))
     startup_section(report, load(args.results, "startup.json"))
     scale_section(report, load(args.results, "scale.json"))
+    security_section(report.sections, load(args.results, "security.json"))
     drew = picture(args.results, args.picture)
     info = machine(args.results)
 

@@ -205,7 +205,15 @@ TEST_F(StationSecurity, ExpiredOrUntrustedCertificateIsRefusedAtStart) {
                  kHubctlPatience);
     return run ? *run : Finished{{}, run.error().message};
   };
-  const Finished expired = hubd_as("expired");
+  // The expired identity through the hub file's security: section rather than the options.
+  const std::string hub_file = root_ + "/dock_ecu_secured.yaml";
+  {
+    std::ifstream in(std::string(HUBRT_SOURCE_DIR) + "/hubs/dock_ecu/dock_ecu.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(hub_file) << text << "\nsecurity: {dir: station, identity: expired}\n";
+  }
+  const auto expired_run = run_hubd(*domain_, {"--board", "host-sim", "--hub", hub_file}, kHubctlPatience);
+  const Finished expired = expired_run ? *expired_run : Finished{{}, expired_run.error().message};
   EXPECT_TRUE(expired.status.exited_with(2)) << expired.output;
   EXPECT_NE(expired.output.find("expired.cert.pem has expired: valid until 2020-01-31"), std::string::npos)
       << expired.output;
