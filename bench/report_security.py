@@ -24,7 +24,9 @@ def security_section(sections, security):
         f"`hubrt_bench_security`: payload {security['payload']}; security: {security['security']}. Two hubd "
         f"(Dock ECU, {security['hub_rate_hz']:g} Hz) in two private domains, one secured with a PKI made by "
         "`firmware/security` (as `hubctl security`), answer the same planner (C API, waitset; secured on the "
-        f"secured side) in alternating blocks for {security['seconds']:.0f} s. Hub CPU: user+system time over "
+        f"secured side) in alternating blocks for {security['seconds']:.0f} s, a {security.get('gap_ms', 0):g} ms "
+        "pause after each round trip (longer than the hubs' 10 ms budget of immediate States, so every echo is "
+        "one). Hub CPU: user+system time over "
         "the measured blocks in % of one core; RSS: at the end.",
         "",
         "| | n | p50 | p90 | p99 | max | lost | hub CPU | hub RSS | hub threads |",

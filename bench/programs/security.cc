@@ -31,8 +31,10 @@ Expected<std::string> make_pki(const std::string& dir) {
   const auto now = static_cast<std::int64_t>(::time(nullptr));
   const security::Validity validity{now - 3600, now + 24 * 3600};
   if (auto ok = security::init_station(dir, validity); !ok) return std::move(ok).error();
-  if (auto ok = security::add_identity(dir, "dock_ecu", validity,
-                                       {"rt/dock_ecu/dock/state", "rt/diagnostics"}, {"rt/dock/command"});
+  // As `hubctl security add ... --role hub --hub dock_ecu --sim`: the simulated hub's sim bridge too.
+  if (auto ok = security::add_identity(
+          dir, "dock_ecu", validity, {"rt/dock_ecu/dock/state", "rt/diagnostics", "rt/sim/dock_ecu/signals"},
+          {"rt/dock/command", "rt/sim/input", "rt/sim/fault"});
       !ok) {
     return std::move(ok).error();
   }
@@ -60,7 +62,7 @@ nlohmann::ordered_json side_json(const Side& side, double elapsed_s) {
   return json;
 }
 
-int run(const std::string& out, std::size_t rounds, std::size_t per_block, double hub_rate) {
+int run(const std::string& out, std::size_t rounds, std::size_t per_block, double hub_rate, double gap_ms) {
   auto plain_domain = join_private_domain();
   if (!plain_domain) return fmt::print(stderr, "{}\n", plain_domain.error().message), 1;
   auto secure_domain = test_support::TestDomain::acquire();
@@ -108,8 +110,8 @@ int run(const std::string& out, std::size_t rounds, std::size_t per_block, doubl
   }
   const double start = mono_now();
   for (std::size_t round = 0; round < rounds; ++round) {
-    run_block(plain.peer, per_block, true);
-    run_block(secure.peer, per_block, true);
+    run_block(plain.peer, per_block, true, gap_ms / 1e3);
+    run_block(secure.peer, per_block, true, gap_ms / 1e3);
   }
   const double elapsed = mono_now() - start;
   for (Side* side : {&plain, &secure}) {
@@ -130,6 +132,7 @@ int run(const std::string& out, std::size_t rounds, std::size_t per_block, doubl
       "governance of hubctl security init: discovery, liveliness and payload encrypted, "
       "access control on; ECDSA P-256 identities";
   result["hub_rate_hz"] = hub_rate;
+  result["gap_ms"] = gap_ms;
   result["seconds"] = elapsed;
   result["off"] = side_json(plain, elapsed);
   result["on"] = side_json(secure, elapsed);
@@ -155,6 +158,9 @@ int main(int argc, char** argv) {
   app.add_option("--rounds", rounds, "Alternating blocks per side");
   app.add_option("--per-block", per_block, "Round trips per block");
   app.add_option("--hub-rate", hub_rate, "The hubs' cycle rate in Hz");
+  // Longer than the hubs' immediate-State budget (10 ms), so every echo is an immediate State.
+  double gap_ms = 12;
+  app.add_option("--gap-ms", gap_ms, "Pause after each round trip, in ms");
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, rounds, per_block, hub_rate);
+  return hubrt::bench::run(out, rounds, per_block, hub_rate, gap_ms);
 }

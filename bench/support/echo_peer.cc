@@ -1,6 +1,8 @@
 #include "echo_peer.h"
 
+#include <chrono>
 #include <cstring>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -69,7 +71,7 @@ Expected<Peer> open_peer(dds_entity_t participant, std::string name, const std::
   return peer;
 }
 
-void run_block(Peer& peer, std::size_t samples, bool record) {
+void run_block(Peer& peer, std::size_t samples, bool record, double gap_s) {
   for (std::size_t i = 0; i < samples; ++i) {
     const double rtt = round_trip(peer, i % 2 == 0 ? "monitor" : "reset");
     if (rtt < 0) {
@@ -77,6 +79,7 @@ void run_block(Peer& peer, std::size_t samples, bool record) {
     } else if (record) {
       peer.latencies_ms.push_back(rtt * 1e3);
     }
+    if (gap_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(gap_s));
   }
 }
 
