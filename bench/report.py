@@ -12,6 +12,7 @@ import sys
 from collections import defaultdict
 
 from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
+from report_security import security_section  # bench/report_security.py, next to this file
 
 # DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
 ROS1_P50_MS = 0.34
@@ -443,6 +444,7 @@ def main():
     startup_section(report, load(args.results, "startup.json"))
     scale_section(report, load(args.results, "scale.json"))
     ros1_section(report, load(args.results, "ros1.json"))
+    security_section(report.sections, load(args.results, "security.json"))
     drew = picture(args.results, args.picture)
     info = machine(args.results)
 

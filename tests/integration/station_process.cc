@@ -77,7 +77,12 @@ Expected<StationProcesses> StationProcesses::start(const test_support::TestDomai
   std::string dir = (fs::temp_directory_path() / "hubrt-station-XXXXXX").string();
   if (::mkdtemp(dir.data()) == nullptr)
     return make_error(ErrorCode::kIo, fmt::format("mkdtemp {} failed", dir));
-  StationProcesses station(domain, dir);
+  StationProcesses station(domain, dir, options.security_dir);
+  const auto secured = [&options](std::vector<std::string> args, const std::string& identity) {
+    if (!options.security_dir.empty())
+      args.insert(args.end(), {"--security", options.security_dir, "--identity", identity});
+    return args;
+  };
   std::vector<std::pair<std::string, std::string>> files;
   for (const char* hub : kHubs) {
     auto file = write_hub_file(hub, options, dir);
@@ -91,11 +96,12 @@ Expected<StationProcesses> StationProcesses::start(const test_support::TestDomai
   for (const auto& [hub, file] : files) {
     std::vector<std::string> args = {"--board", "host-sim", "--hub", file};
     args.insert(args.end(), options.hubd_args.begin(), options.hubd_args.end());
-    auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+    auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, secured(args, hub), env);
     if (!child) return std::move(child).error();
     starting.emplace_back(hub, std::move(*child));
   }
-  auto hubsim = test_support::ChildProcess::start(HUBRT_HUBSIM_PATH, options.hubsim_args, env);
+  auto hubsim =
+      test_support::ChildProcess::start(HUBRT_HUBSIM_PATH, secured(options.hubsim_args, "hubsim"), env);
   if (!hubsim) return std::move(hubsim).error();
   for (auto& [hub, child] : starting) {
     if (!child.wait_for_output("running hub", kStartPatience)) {
@@ -125,8 +131,9 @@ Expected<Finished> StationProcesses::play(const std::string& scenario, Duration 
   test_support::Environment env = domain_->env();
   env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
   // --timeout: how long discovery may take on a loaded machine.
-  auto child =
-      test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, {"play", scenario, "--timeout", "20"}, env);
+  std::vector<std::string> args = {"play", scenario, "--timeout", "20"};
+  if (!security_dir_.empty()) args.insert(args.end(), {"--security", security_dir_, "--identity", "planner"});
+  auto child = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, args, env);
   if (!child) return std::move(child).error();
   auto status = child->wait(timeout);
   if (!status) {

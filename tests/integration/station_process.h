@@ -22,6 +22,9 @@ struct StationOptions {
   std::vector<std::string> hubd_args;    // e.g. {"--rate", "20"}
   std::vector<std::string> hubsim_args;  // e.g. {"--travel-ms", "150"}
   double lift_speed_mm_s = 0;            // > 0: overrides the Tool ECU's lift speed
+  // Non-empty: DDS Security from this station folder (hubctl security init/add), each hub as the
+  // identity named after it, hubsim as "hubsim", hubctl play as "planner".
+  std::string security_dir;
 };
 
 // Move-only. The destructor stops every process (ChildProcess kills what still runs) and removes
@@ -47,11 +50,12 @@ class StationProcesses {
   [[nodiscard]] std::string logs() const;
 
  private:
-  StationProcesses(const test_support::TestDomain& domain, std::string dir)
-      : domain_(&domain), dir_(std::move(dir)) {}
+  StationProcesses(const test_support::TestDomain& domain, std::string dir, std::string security_dir)
+      : domain_(&domain), dir_(std::move(dir)), security_dir_(std::move(security_dir)) {}
 
   const test_support::TestDomain* domain_;
   std::string dir_;  // the hub files; removed by the destructor ("" once moved from)
+  std::string security_dir_;
   std::vector<std::pair<std::string, test_support::ChildProcess>> hubs_;  // hubd by hub
   std::optional<test_support::ChildProcess> hubsim_;
 };

@@ -62,6 +62,25 @@ Expected<std::vector<Subscription>> subscriptions(const YamlMap& root) {
   return out;
 }
 
+Expected<std::optional<HubSecurity>> security(const YamlMap& root) {
+  if (!root.has("security")) return std::optional<HubSecurity>();
+  auto map = root.map("security");
+  if (!map) return std::move(map).error();
+  if (auto ok = map->only_keys({"dir", "identity"}); !ok) return std::move(ok).error();
+  auto dir = map->string("dir");
+  if (!dir) return std::move(dir).error();
+  if (dir->empty()) return map->error_at("dir", "must name the station's security folder");
+  auto identity = map->string("identity");
+  if (!identity) return std::move(identity).error();
+  std::string folder = *dir;
+  if (folder.front() != '/') {
+    const std::string& file = root.file();
+    const auto slash = file.rfind('/');
+    folder = (slash == std::string::npos ? std::string(".") : file.substr(0, slash)) + "/" + folder;
+  }
+  return std::optional<HubSecurity>(HubSecurity{folder, *identity});
+}
+
 }  // namespace
 
 bool is_ros_name_token(std::string_view name) noexcept {
@@ -75,8 +94,9 @@ bool is_ros_name_token(std::string_view name) noexcept {
 }
 
 Expected<HubConfig> parse_hub_config(const YamlMap& root) {
-  if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "immediate_state_interval_ms",
-                                "layout", "namespace", "diagnostics_hz", "nodes", "subscriptions"});
+  if (auto ok =
+          root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "immediate_state_interval_ms",
+                          "layout", "namespace", "diagnostics_hz", "nodes", "subscriptions", "security"});
       !ok) {
     return std::move(ok).error();
   }
@@ -144,6 +164,9 @@ Expected<HubConfig> parse_hub_config(const YamlMap& root) {
   auto subs = subscriptions(root);
   if (!subs) return std::move(subs).error();
   config.subscriptions = std::move(*subs);
+  auto secured = security(root);
+  if (!secured) return std::move(secured).error();
+  config.security = std::move(*secured);
   return config;
 }
 

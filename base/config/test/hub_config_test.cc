@@ -152,3 +152,48 @@ TEST(HubConfig, BrokenFilesGiveTheirExpectedMessages) {
 
 }  // namespace
 }  // namespace hubrt::config
+
+namespace hubrt::config {
+namespace {
+
+TEST(HubConfig, SecuritySectionNamesFolderAndIdentity) {
+  auto config = YamlMap::load_string(
+      "hub: dock_ecu\nnodes:\n  dock: {type: dock}\n"
+      "security: {dir: /etc/hubrt/security, identity: dock_ecu}\n",
+      "/etc/hubrt/hubs/dock_ecu.yaml");
+  ASSERT_TRUE(config) << config.error().message;
+  auto hub = parse_hub_config(*config);
+  ASSERT_TRUE(hub) << hub.error().message;
+  ASSERT_TRUE(hub->security.has_value());
+  EXPECT_EQ(hub->security->dir, "/etc/hubrt/security");
+  EXPECT_EQ(hub->security->identity, "dock_ecu");
+}
+
+TEST(HubConfig, SecurityFolderIsRelativeToTheHubFile) {
+  auto config = YamlMap::load_string(
+      "hub: dock_ecu\nnodes:\n  dock: {type: dock}\n"
+      "security: {dir: ../security, identity: dock_ecu}\n",
+      "/etc/hubrt/hubs/dock_ecu.yaml");
+  ASSERT_TRUE(config) << config.error().message;
+  auto hub = parse_hub_config(*config);
+  ASSERT_TRUE(hub) << hub.error().message;
+  EXPECT_EQ(hub->security->dir, "/etc/hubrt/hubs/../security");
+  auto none =
+      parse_hub_config(*YamlMap::load_string("hub: dock_ecu\nnodes:\n  dock: {type: dock}\n", "x.yaml"));
+  ASSERT_TRUE(none);
+  EXPECT_FALSE(none->security.has_value()) << "no section: unsecured";
+}
+
+TEST(HubConfig, SecuritySectionNeedsAnIdentityAndNothingElse) {
+  for (const char* section :
+       {"security: {dir: /etc/hubrt/security}\n", "security: {dir: /x, identity: a, password: b}\n",
+        "security: {dir: '', identity: a}\n"}) {
+    auto config = YamlMap::load_string(std::string("hub: dock_ecu\nnodes:\n  dock: {type: dock}\n") + section,
+                                       "x.yaml");
+    ASSERT_TRUE(config) << section;
+    EXPECT_FALSE(parse_hub_config(*config)) << section;
+  }
+}
+
+}  // namespace
+}  // namespace hubrt::config

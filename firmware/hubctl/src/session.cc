@@ -11,6 +11,7 @@
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/ros_names.h"
 #include "hubrt/msgs/all_types.h"
+#include "hubrt/security/participant_security.h"
 
 namespace hubrt::hubctl {
 namespace {
@@ -32,6 +33,11 @@ void add_domain_options(CLI::App& app, DomainOptions& options) {
   app.add_option("--dds-config", options.dds_config,
                  "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI)");
   app.add_flag("--loopback", options.loopback, "Keep DDS on the loopback interface");
+  auto* security = app.add_option("--security", options.security_dir,
+                                  "DDS Security: the station's security folder (hubctl security init)");
+  auto* identity = app.add_option("--identity", options.identity, "DDS Security: the identity to join as");
+  security->needs(identity);
+  identity->needs(security);
   app.add_option("--timeout", options.timeout_s, "Seconds to wait for the hub to be discovered")
       ->check(CLI::Range(0.0, 3600.0));
 }
@@ -60,7 +66,21 @@ Expected<dds::Participant> join_domain(const DomainOptions& options, std::string
   if (options.domain) config->domain_id = *options.domain;
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) config->cyclone_xml = options.dds_config;
-  return dds::Participant::create(*config, name);
+  if (!options.security_dir.empty()) {
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    auto secured = security::security_xml_for({options.security_dir, options.identity},
+                                              std::chrono::duration_cast<std::chrono::seconds>(now).count());
+    if (!secured) return std::move(secured).error();
+    config->cyclone_xml = security::with_security(config->cyclone_xml, *secured);
+  }
+  auto participant = dds::Participant::create(*config, name);
+  if (!participant && !options.security_dir.empty()) {
+    // The credentials passed our own check: Cyclone's security plugins said why on stderr.
+    return make_error(participant.error().code, participant.error().message +
+                                                    "; with DDS Security identity '" + options.identity +
+                                                    "' (Cyclone's reason is logged above)");
+  }
+  return participant;
 }
 
 Expected<std::string> ros_topic(std::string_view topic) {

@@ -20,7 +20,9 @@ struct DomainOptions {
   std::optional<std::uint32_t> domain;
   std::string dds_config;
   bool loopback = false;
-  double timeout_s = 5.0;  // how long to wait for discovery
+  double timeout_s = 5.0;    // how long to wait for discovery
+  std::string security_dir;  // DDS Security: station folder (hubctl security init) ...
+  std::string identity;      // ... and the identity to join as; both or neither
 };
 void add_domain_options(CLI::App& app, DomainOptions& options);
 

@@ -16,10 +16,12 @@
 
 #include "hubrt/assembly/hub_assembly.h"
 #include "hubrt/base/exit_codes.h"
+#include "hubrt/config/hub_config.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/oversize_samples.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/runtime/cycle_runner.h"
+#include "hubrt/security/participant_security.h"
 
 #include "config_files.h"
 #include "crash_handlers.h"
@@ -45,6 +47,8 @@ struct Options {
   bool safe_outputs = false;
   bool realtime = false;
   int realtime_priority = kDefaultRealtimePriority;
+  std::string security_dir;  // DDS Security, overriding the hub file's security: section
+  std::string identity;
   std::uint32_t twin_check_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(assembly::kDefaultTwinCheckWindow).count());
 };
@@ -63,7 +67,22 @@ int fail(const std::string& message, int code) {
   return code;
 }
 
-Expected<dds::DomainConfig> domain_config(const Options& options) {
+// The hub's DDS Security: --security/--identity, else the hub file's `security:` section, else
+// none. The credentials are checked here, before Cyclone sees them, so that an expired or foreign
+// certificate is refused with a message naming the file and the date (docs/deploy.md).
+Expected<std::optional<security::SecurityChoice>> security_choice(const Options& options,
+                                                                  const std::string& hub_file) {
+  using Choice = std::optional<security::SecurityChoice>;
+  if (!options.security_dir.empty())
+    return Choice(security::SecurityChoice{options.security_dir, options.identity});
+  auto hub = config::load_hub_config(hub_file);
+  if (!hub) return std::move(hub).error();
+  if (!hub->security) return std::optional<security::SecurityChoice>();
+  return Choice(security::SecurityChoice{hub->security->dir, hub->security->identity});
+}
+
+Expected<dds::DomainConfig> domain_config(const Options& options,
+                                          const std::optional<security::SecurityChoice>& secured) {
   auto config = dds::domain_config_from_environment();
   if (!config) return config;
   if (options.domain) config->domain_id = *options.domain;
@@ -72,6 +91,13 @@ Expected<dds::DomainConfig> domain_config(const Options& options) {
   // Whatever the configuration, a peer cannot make this hub receive and hold samples larger than
   // dds::kMaxSampleSizeBytes (README.md, "Hostile input").
   config->cyclone_xml = dds::with_sample_bounds(config->cyclone_xml);
+  if (secured) {
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    auto xml =
+        security::security_xml_for(*secured, std::chrono::duration_cast<std::chrono::seconds>(now).count());
+    if (!xml) return std::move(xml).error();
+    config->cyclone_xml = security::with_security(config->cyclone_xml, *xml);
+  }
   return config;
 }
 
@@ -116,7 +142,9 @@ int run(const Options& options) {
   install_crash_handlers();
   // Before the first participant: /diagnostics counts the oversize samples Cyclone drops.
   dds::count_oversize_samples();
-  auto domain = domain_config(options);
+  auto secured = security_choice(options, *hub_file);
+  if (!secured) return fail(secured.error().message, kExitConfig);
+  auto domain = domain_config(options, *secured);
   if (!domain) return fail(domain.error().message, kExitConfig);
 
   assembly::AssemblyRequest request;
@@ -130,10 +158,11 @@ int run(const Options& options) {
   request.log_lines_dropped = &log_lines_dropped();
   const auto describe = [&](const config::HubConfig& hub_config, const std::string& board_name) {
     return fmt::format(
-        "hub '{}' ({}) on board '{}' with the {} backend, {} node(s), {:.1f} Hz, DDS domain {}",
+        "hub '{}' ({}) on board '{}' with the {} backend, {} node(s), {:.1f} Hz, DDS domain {}{}",
         hub_config.name, hub_config.type, board_name,
         *backend == assembly::BackendKind::kFake ? "fake" : "linux", hub_config.nodes.size(),
-        hub_config.rate_hz, domain->domain_id);
+        hub_config.rate_hz, domain->domain_id,
+        *secured ? fmt::format(", DDS Security as '{}'", (*secured)->identity) : std::string());
   };
   if (options.check_only) {
     // Files and requirements only: no backend (a real board would request its GPIO outputs), no
@@ -161,6 +190,22 @@ int run(const Options& options) {
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
+    const std::string& message = assembled.error().message;
+    if (*secured && message.find("create participant") != std::string::npos) {
+      // Our own check passed the files: Cyclone's security plugins refused them and said why on
+      // stderr just before (e.g. permissions that do not name this certificate's subject).
+      return fail(
+          fmt::format("{}; DDS Security identity '{}' refused by Cyclone (its reason is logged above)",
+                      message, (*secured)->identity),
+          kExitConfig);
+    }
+    if (*secured && message.find("NOT_ALLOWED_BY_SECURITY") != std::string::npos) {
+      // Access control refused a topic, reader or writer: the identity's permissions do not
+      // cover this hub file (hubctl security add --role hub --hub <this hub file>).
+      return fail(fmt::format("{}; the permissions of DDS Security identity '{}' do not allow it", message,
+                              (*secured)->identity),
+                  kExitConfig);
+    }
     return fail(assembled.error().message, assembled.error().code == ErrorCode::kInvalidArgument ||
                                                    assembled.error().code == ErrorCode::kNotFound ||
                                                    assembled.error().code == ErrorCode::kFailedPrecondition
@@ -220,6 +265,14 @@ int main(int argc, char** argv) {
   app.add_option("--dds-config", options.dds_config,
                  "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI), read after hubd's own "
                  "bound on sample sizes (Internal/MaxSampleSize 65536 B)");
+  auto* security = app.add_option(
+      "--security", options.security_dir,
+      "DDS Security: the station's security folder (e.g. /etc/hubrt/security), overriding the hub file's "
+      "security: section; an expired or untrusted certificate is refused at start (exit 2)");
+  auto* identity =
+      app.add_option("--identity", options.identity, "DDS Security: the identity the hub joins as");
+  security->needs(identity);
+  identity->needs(security);
   app.add_flag("--loopback", options.loopback,
                "Keep DDS on the loopback interface (single-machine simulation)");
   app.add_option("--name", options.name, "Instance name, overriding the hub file's (unique on the domain)");

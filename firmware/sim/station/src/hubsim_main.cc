@@ -16,6 +16,7 @@
 
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/participant.h"
+#include "hubrt/security/participant_security.h"
 #include "hubrt/sim/station/station_bridge.h"
 #include "hubrt/sim/station/station_config.h"
 #include "hubrt/sim/station/station_model.h"
@@ -37,6 +38,8 @@ struct Options {
   std::optional<double> rate_hz;
   std::optional<int> travel_ms;
   std::string log_level = "info";
+  std::string security_dir;  // DDS Security (role simulator): station folder and identity
+  std::string identity;
 };
 
 constexpr int kExitRuntime = 1;
@@ -98,6 +101,16 @@ int run(const Options& options) {
   if (options.domain) domain->domain_id = *options.domain;
   if (options.loopback) domain->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) domain->cyclone_xml = options.dds_config;
+  if (!options.security_dir.empty()) {
+    const auto now = std::chrono::system_clock::now().time_since_epoch();
+    auto secured = security::security_xml_for({options.security_dir, options.identity},
+                                              std::chrono::duration_cast<std::chrono::seconds>(now).count());
+    if (!secured) {
+      spdlog::error("{}", secured.error().message);
+      return kExitConfig;
+    }
+    domain->cyclone_xml = security::with_security(domain->cyclone_xml, *secured);
+  }
   auto participant = dds::Participant::create(*domain, "hubsim");
   if (!participant) {
     spdlog::error("{}", participant.error().message);
@@ -139,6 +152,12 @@ int main(int argc, char** argv) {
   app.add_option("--dds-config", options.dds_config,
                  "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI)");
   app.add_flag("--loopback", options.loopback, "Keep DDS on the loopback interface");
+  auto* security = app.add_option("--security", options.security_dir,
+                                  "DDS Security: the station's security folder (hubctl security init)");
+  auto* identity = app.add_option("--identity", options.identity,
+                                  "DDS Security: the identity to join as (role simulator)");
+  security->needs(identity);
+  identity->needs(security);
   app.add_option("--tool-ecu", options.tool_ecu, "Instance name of the Tool ECU");
   app.add_option("--rsp-ecu", options.rsp_ecu, "Instance name of the RSP ECU");
   app.add_option("--dock-ecu", options.dock_ecu, "Instance name of the Dock ECU");

@@ -3,6 +3,7 @@
 // stay as located YAML for the hub type to read, so its errors name file and line too.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,13 @@ struct Subscription {
   Duration timeout{};  // older than this counts as lost
 };
 
+// DDS Security for this hub (docs/deploy.md, "Securing a station"): the station's security
+// folder (relative paths: from the hub file's folder) and the identity the hub joins as.
+struct HubSecurity {
+  std::string dir;
+  std::string identity;
+};
+
 struct HubConfig {
   std::string file;
   std::string type;
@@ -47,6 +55,7 @@ struct HubConfig {
   double diagnostics_hz = 1.0;
   std::vector<NodeConfig> nodes;
   std::vector<Subscription> subscriptions;
+  std::optional<HubSecurity> security;  // absent: the hub joins the domain unsecured
 };
 
 // Loads and validates a hub configuration. Errors name file:line:col, the key and the problem.
