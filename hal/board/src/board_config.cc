@@ -30,6 +30,11 @@ const BoardModbusDevice* BoardConfig::find_modbus(std::string_view device) const
                  [](const BoardModbusDevice& d) -> const std::string& { return d.config.device; });
 }
 
+const BoardBadgeReader* BoardConfig::find_badge_reader(std::string_view reader) const noexcept {
+  return find_by(badge_readers, reader,
+                 [](const BoardBadgeReader& r) -> const std::string& { return r.config.reader; });
+}
+
 const BoardGpioChip* BoardConfig::find_chip(std::string_view alias) const noexcept {
   return find_by(chips, alias, [](const BoardGpioChip& c) -> const std::string& { return c.alias; });
 }

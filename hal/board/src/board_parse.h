@@ -28,6 +28,7 @@ Expected<void> parse_gpio(const YamlMap& gpio, BoardConfig& board);
 Expected<void> parse_can(const YamlMap& root, BoardConfig& board);
 // TCP port 0 (picked by the simulator) is accepted on simulation boards only.
 Expected<void> parse_modbus(const YamlMap& root, BoardConfig& board, bool simulation_board);
+Expected<void> parse_rfid(const YamlMap& root, BoardConfig& board);
 Expected<void> parse_simulation(const YamlMap& simulation, BoardConfig& board);
 
 }  // namespace hubrt::hal::board_detail

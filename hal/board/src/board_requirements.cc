@@ -18,6 +18,9 @@ std::string declared_as(const BoardConfig& board, std::string_view name) {
   if (const BoardModbusDevice* device = board.find_modbus(name)) {
     return fmt::format("a Modbus device (line {})", device->where.line);
   }
+  if (const BoardBadgeReader* reader = board.find_badge_reader(name)) {
+    return fmt::format("an RFID reader (line {})", reader->where.line);
+  }
   return {};
 }
 
@@ -62,8 +65,13 @@ Expected<void> check_requirements(const BoardConfig& board, const BoardRequireme
       !ok) {
     return ok;
   }
-  return check_kind(board, required, "Modbus device", required.modbus_devices,
-                    [&](const std::string& n) { return board.find_modbus(n) != nullptr; });
+  if (auto ok = check_kind(board, required, "Modbus device", required.modbus_devices,
+                           [&](const std::string& n) { return board.find_modbus(n) != nullptr; });
+      !ok) {
+    return ok;
+  }
+  return check_kind(board, required, "RFID reader", required.badge_readers,
+                    [&](const std::string& n) { return board.find_badge_reader(n) != nullptr; });
 }
 
 }  // namespace hubrt::hal

@@ -41,6 +41,9 @@ Expected<std::unique_ptr<FakeBackend>> FakeBackend::create(const BoardConfig& bo
   if (auto ok = backend->build_gpio(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_can(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_modbus(); !ok) return std::move(ok).error();
+  for (const BoardBadgeReader& reader : board.badge_readers) {
+    backend->badge_readers_.push_back(std::make_unique<SimulatedBadgeReader>(reader.config));
+  }
   return backend;
 }
 
@@ -171,6 +174,23 @@ Expected<std::unique_ptr<ModbusClient>> FakeBackend::open_modbus(const ModbusCon
   ModbusConfig connected = config;
   connected.endpoint = ModbusTcpEndpoint{lift->host, lift->server->port()};
   return libmodbus::open_libmodbus(connected, clock_);
+}
+
+Expected<std::unique_ptr<BadgeReader>> FakeBackend::open_badge_reader(const BadgeReaderConfig& config) {
+  SimulatedBadgeReader* reader = badge_reader(config.reader);
+  if (reader == nullptr) {
+    return make_error(
+        ErrorCode::kNotFound,
+        fmt::format("{}: no simulated RFID reader of this name on board {}", config.reader, board_.name));
+  }
+  return reader->open();
+}
+
+SimulatedBadgeReader* FakeBackend::badge_reader(std::string_view reader) noexcept {
+  for (auto& simulated : badge_readers_) {
+    if (simulated->config().reader == reader) return simulated.get();
+  }
+  return nullptr;
 }
 
 PneumaticValve* FakeBackend::valve(std::string_view output_signal) noexcept {

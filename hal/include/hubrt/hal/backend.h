@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "hubrt/base/status.h"
+#include "hubrt/hal/badge_reader.h"
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/digital_io.h"
 #include "hubrt/hal/modbus_client.h"
@@ -25,9 +26,15 @@ class Backend {
   virtual Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) = 0;
   virtual Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) = 0;
   virtual Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) = 0;
+  // An RFID badge reader. Not every backend has them: this default refuses with kNotFound.
+  virtual Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config);
 
  protected:
   Backend() = default;
 };
+
+inline Expected<std::unique_ptr<BadgeReader>> Backend::open_badge_reader(const BadgeReaderConfig& config) {
+  return make_error(ErrorCode::kNotFound, config.reader + ": this backend has no RFID badge readers");
+}
 
 }  // namespace hubrt::hal

@@ -3,6 +3,7 @@
 #include "hubrt/hal/common/debounced_input.h"
 #include "hubrt/hal/libmodbus/open_libmodbus.h"
 #include "hubrt/hal/linux/gpiod_lines.h"
+#include "hubrt/hal/rfid/open_badge_reader.h"
 #include "hubrt/hal/socketcan/open_socketcan.h"
 
 namespace hubrt::hal {
@@ -23,6 +24,10 @@ Expected<std::unique_ptr<CanBus>> LinuxBackend::open_can(const CanConfig& config
 
 Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusConfig& config) {
   return libmodbus::open_libmodbus(config);
+}
+
+Expected<std::unique_ptr<BadgeReader>> LinuxBackend::open_badge_reader(const BadgeReaderConfig& config) {
+  return rfid::open_badge_reader(config);
 }
 
 }  // namespace hubrt::hal

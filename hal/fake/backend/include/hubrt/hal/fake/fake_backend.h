@@ -20,6 +20,7 @@
 #include "hubrt/hal/fake/pneumatic_valve.h"
 #include "hubrt/hal/fake/pressure_supply.h"
 #include "hubrt/hal/fake/settable_input.h"
+#include "hubrt/hal/fake/simulated_badge_reader.h"
 #include "hubrt/hal/fake/smart_tool_simulator.h"
 #include "hubrt/hal/fake/virtual_can_network.h"
 
@@ -52,6 +53,9 @@ class FakeBackend final : public Backend {
   // A real libmodbus client connected to the simulator of config.device (its port put in for the
   // board's port 0). Errors: kNotFound (no simulator for that device), those of open_libmodbus.
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
+  // The simulated reader of the board's rfid: entry config.reader (every reader of the board has
+  // one). Errors: kNotFound (no such reader, or it is unplugged).
+  Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config) override;
 
   // --- Test hooks, by logical name (nullptr when the board has no such thing) --------------------
   [[nodiscard]] FakeGpio& gpio() noexcept { return gpio_; }
@@ -64,6 +68,7 @@ class FakeBackend final : public Backend {
   [[nodiscard]] SmartToolSimulator* smart_tool(std::string_view can_bus) noexcept;
   [[nodiscard]] LiftDrive* lift_drive(std::string_view modbus_device) noexcept;
   [[nodiscard]] LiftDriveServer* lift_drive_server(std::string_view modbus_device) noexcept;
+  [[nodiscard]] SimulatedBadgeReader* badge_reader(std::string_view reader) noexcept;
 
   // The chip and line a signal is wired to, for the chip's own hooks (history, faults).
   struct Wiring {
@@ -112,6 +117,7 @@ class FakeBackend final : public Backend {
   VirtualCanNetwork can_network_;
   std::vector<std::pair<std::string, std::unique_ptr<SmartToolSimulator>>> smart_tools_;  // after the network
   std::vector<SimulatedLift> lifts_;
+  std::vector<std::unique_ptr<SimulatedBadgeReader>> badge_readers_;
 };
 
 }  // namespace hubrt::hal::fake

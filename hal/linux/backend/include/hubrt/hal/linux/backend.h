@@ -20,6 +20,8 @@ class LinuxBackend final : public Backend {
   Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) override;
   Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) override;
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
+  // libevdev or termios, as config.kind says: rfid::open_badge_reader (rfid/).
+  Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config) override;
 };
 
 }  // namespace hubrt::hal
