@@ -29,6 +29,10 @@
 #include "dock_typed.h"
 #include "lamp_reflect.h"
 #include "lamp_typed.h"
+#include "operator_hub_reflect.h"
+#include "operator_hub_typed.h"
+#include "operator_panel_reflect.h"
+#include "operator_panel_typed.h"
 #include "rsp_reflect.h"
 #include "rsp_typed.h"
 #include "signal_lamp_reflect.h"
@@ -309,6 +313,8 @@ TEST(CommandCorpus, EveryStringFieldOfEveryCommandTypeRejectsBadTextAndReportsIt
   run_corpus<hub_msgs::ToolEcuCommandView, hub_msgs::ToolEcuState>();
   run_corpus<hub_msgs::LampCommandView, hub_msgs::LampState>();
   run_corpus<hub_msgs::SignalLampCommandView, hub_msgs::SignalLampState>();
+  run_corpus<hub_msgs::OperatorPanelCommandView, hub_msgs::OperatorPanelState>();
+  run_corpus<hub_msgs::OperatorHubCommandView, hub_msgs::OperatorHubState>();
   run_check_fields_corpus<hub_msgs_msg_dds__StationCommand_>();
 
   // Every Command type built into hubrt (target_type, target_name, action first) is in

@@ -73,9 +73,9 @@ TEST(AllowListTest, HashingAgainAllocatesNothing) {
 }
 
 struct BrokenList {
-  const char* name;
+  std::string_view name;
   std::string text;
-  const char* expected;  // the message, after "<file>:"
+  std::string_view expected;  // the message, after "<file>:"
 };
 
 class BrokenAllowListTest : public ::testing::TestWithParam<BrokenList> {};
@@ -84,7 +84,7 @@ TEST_P(BrokenAllowListTest, IsRefusedWithFileAndLine) {
   auto list = AllowList::parse(GetParam().text, "ops.list");
   ASSERT_FALSE(list);
   EXPECT_EQ(list.error().code, ErrorCode::kInvalidArgument);
-  EXPECT_EQ(list.error().message, std::string("ops.list:") + GetParam().expected);
+  EXPECT_EQ(list.error().message, "ops.list:" + std::string(GetParam().expected));
 }
 
 const std::string kAnna = std::string(kAnnaHash) + " Anna\n";

@@ -109,7 +109,7 @@ class HubdOperatorTest : public ::testing::Test {
   void hubctl_send(const std::vector<std::string>& args) {
     std::vector<std::string> all{"send"};
     all.insert(all.end(), args.begin(), args.end());
-    for (const char* extra : {"--once", "--wait", "1", "--quiet"}) all.emplace_back(extra);
+    for (std::string_view extra : {"--once", "--wait", "1", "--quiet"}) all.emplace_back(extra);
     auto send = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, all, domain_->env());
     ASSERT_TRUE(send) << send.error().message;
     auto status = send->wait(kPatience);

@@ -15,7 +15,8 @@ struct BoardRequirements {
   std::vector<std::string> outputs;         // logical output signals
   std::vector<std::string> can_buses;       // CAN bus names
   std::vector<std::string> modbus_devices;  // Modbus device names
-  std::vector<std::string> badge_readers;   // RFID reader names (rfid:)
+  // RFID reader names (rfid:). Initialised so that requirement lists written before it still compile.
+  std::vector<std::string> badge_readers{};
 };
 
 // Checks that `board` is wired for `required.hub` and declares every required signal, bus and

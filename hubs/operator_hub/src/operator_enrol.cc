@@ -1,11 +1,13 @@
-// operator-enrol: puts operators on the allow-list (src/allow_list.h) without the badge ever
-// being stored, shown or passed as an argument (a command line is visible to every user in
-// /proc and lands in shell history):
+// operator-enrol (its main is firmware/operator_enrol/main.cc): puts operators on the allow-list
+// (src/allow_list.h) without the badge ever being stored, shown or passed as an argument (a command line is
+// visible to every user in /proc and lands in shell history):
 //   operator-enrol new <file>          a new, empty allow-list with a fresh random salt (mode 0600)
 //   operator-enrol add <file> <name>   reads the badge from stdin (show it to a keyboard-wedge
 //                                      reader, or type it; echo is off on a terminal), appends
 //                                      "<hash> <name>"; creates the file first if it is missing
 // Exit status: 0 done, 1 refused (name or badge already there, malformed badge, bad file), 2 usage.
+#include "operator_enrol.h"
+
 #include <fcntl.h>
 #include <termios.h>
 #include <unistd.h>
@@ -13,6 +15,7 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <openssl/rand.h>
@@ -115,14 +118,17 @@ int add(const std::string& path, const std::string& name) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  const std::string usage = "usage: operator-enrol new <file> | operator-enrol add <file> <name>";
-  if (argc == 3 && std::string(argv[1]) == "new") {
-    if (!write_new_file(argv[2]))
-      return fail(fmt::format("{}: cannot create it (does it exist already?)", argv[2]));
+namespace hubrt::operator_hub {
+
+int run_operator_enrol(const std::vector<std::string>& args) {
+  if (args.size() == 2 && args[0] == "new") {
+    if (!write_new_file(args[1]))
+      return fail(fmt::format("{}: cannot create it (does it exist already?)", args[1]));
     return 0;
   }
-  if (argc == 4 && std::string(argv[1]) == "add") return add(argv[2], argv[3]);
-  std::cerr << usage << "\n";
+  if (args.size() == 3 && args[0] == "add") return add(args[1], args[2]);
+  std::cerr << "usage: operator-enrol new <file> | operator-enrol add <file> <name>\n";
   return 2;
 }
+
+}  // namespace hubrt::operator_hub
