@@ -1,4 +1,4 @@
-// A HAL backend opens devices. The hub never names a backend: hubd picks one (fake or linux) and
+// A HAL backend opens devices (GPIO lines, CAN buses, Modbus clients, RFID badge readers). The hub never names a backend: hubd picks one (fake or linux) and
 // passes it in, the board file says which chip, line, interface or endpoint each device is.
 #pragma once
 

@@ -1,7 +1,8 @@
 // The Backend for a whole station on one host: fake GPIO chips with simulated valves, pressure
 // supplies, dock sensors and settable inputs; a virtual CAN network with the simulated smart tool
 // controller; the lift-drive simulator as a real libmodbus TCP server on loopback, reached through
-// the real libmodbus client. Built from a board's simulation section (boards/host-sim.yaml).
+// the real libmodbus client; a simulated RFID reader for every rfid: reader of the board. Built
+// from a board's simulation section (boards/host-sim.yaml).
 #pragma once
 
 #include <memory>
