@@ -1,9 +1,9 @@
 #include "allow_list.h"
 
 #include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -93,7 +93,8 @@ Expected<AllowList> AllowList::load(const std::string& path) {
   if (!in) {
     const int err = errno;
     return make_error(err == EACCES ? ErrorCode::kPermissionDenied : ErrorCode::kNotFound,
-                      fmt::format("{}: cannot read the operator allow-list: {}", path, std::strerror(err)));
+                      fmt::format("{}: cannot read the operator allow-list: {}", path,
+                                  std::generic_category().message(err)));
   }
   std::string text(kMaxFileBytes + 1, '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));

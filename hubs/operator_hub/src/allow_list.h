@@ -31,7 +31,7 @@ class AllowList {
  public:
   static constexpr std::size_t kMaxNameBytes = 64;
   static constexpr std::size_t kMaxOperators = 1000;
-  static constexpr std::size_t kMaxFileBytes = 256 * 1024;
+  static constexpr std::size_t kMaxFileBytes = std::size_t{256} * 1024;
 
   // Reads and checks the file. Errors (kNotFound, kPermissionDenied, kInvalidArgument) name
   // "<file>:<line>: what is wrong", e.g. "ops.list:4: not a SHA-256 hash in hex (64 digits)".

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <libevdev/libevdev.h>
@@ -95,13 +95,13 @@ Expected<std::unique_ptr<BadgeReader>> open_evdev_badge_reader(const BadgeReader
     const int err = errno;
     return fail(open_error(err), err == EACCES ? "permission denied (add the hub's user to group input, "
                                                  "or a udev rule: docs/deploy.md)"
-                                               : std::strerror(err));
+                                               : std::generic_category().message(err));
   }
   libevdev* dev = nullptr;
   if (const int rc = libevdev_new_from_fd(fd, &dev); rc < 0) {
     ::close(fd);
     return fail(ErrorCode::kInvalidArgument,
-                fmt::format("not an input event device ({})", std::strerror(-rc)));
+                fmt::format("not an input event device ({})", std::generic_category().message(-rc)));
   }
   if (!libevdev_has_event_code(dev, EV_KEY, KEY_ENTER)) {
     libevdev_free(dev);
@@ -114,7 +114,7 @@ Expected<std::unique_ptr<BadgeReader>> open_evdev_badge_reader(const BadgeReader
       libevdev_free(dev);
       ::close(fd);
       return fail(open_error(-rc), fmt::format("cannot grab it (EVIOCGRAB: {}): another process holds it",
-                                               std::strerror(-rc)));
+                                               std::generic_category().message(-rc)));
     }
   }
   return std::unique_ptr<BadgeReader>(new EvdevBadgeReader(fd, dev, config.timeout));

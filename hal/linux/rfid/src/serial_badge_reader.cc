@@ -10,7 +10,7 @@
 
 #include <array>
 #include <cerrno>
-#include <cstring>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -128,14 +128,15 @@ Expected<std::unique_ptr<BadgeReader>> open_serial_badge_reader(const BadgeReade
                            : err == EACCES || err == EPERM                ? ErrorCode::kPermissionDenied
                            : err == EBUSY                                 ? ErrorCode::kBusy
                                                                           : ErrorCode::kIo;
-    return fail(
-        code, err == EACCES ? "permission denied (add the hub's user to group dialout)" : std::strerror(err));
+    return fail(code, err == EACCES ? "permission denied (add the hub's user to group dialout)"
+                                    : std::generic_category().message(err));
   }
   termios tio{};
   if (::tcgetattr(fd, &tio) != 0) {
     const int err = errno;
     ::close(fd);
-    return fail(ErrorCode::kInvalidArgument, fmt::format("not a terminal ({})", std::strerror(err)));
+    return fail(ErrorCode::kInvalidArgument,
+                fmt::format("not a terminal ({})", std::generic_category().message(err)));
   }
   ::cfmakeraw(&tio);
   tio.c_cflag |= CLOCAL | CREAD;
@@ -145,7 +146,8 @@ Expected<std::unique_ptr<BadgeReader>> open_serial_badge_reader(const BadgeReade
       ::tcsetattr(fd, TCSANOW, &tio) != 0) {
     const int err = errno;
     ::close(fd);
-    return fail(ErrorCode::kIo, fmt::format("cannot configure it ({})", std::strerror(err)));
+    return fail(ErrorCode::kIo,
+                fmt::format("cannot configure it ({})", std::generic_category().message(err)));
   }
   // Whatever waited in the port from before (a badge shown while no hub ran) is stale.
   ::tcflush(fd, TCIFLUSH);
