@@ -119,6 +119,9 @@ endforeach()
 # --- contents: everything in component hubrt-board, paths relative to / ------------------------
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
 install(TARGETS hubd hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+if(HUBRT_PKG_HUB STREQUAL "operator_hub")
+  install(TARGETS operator-enrol RUNTIME DESTINATION usr/bin ${_pkg_component})  # the allow-list's writer
+endif()
 install(FILES "${_pkg_board_file}" DESTINATION etc/hubrt/boards ${_pkg_component})
 set(_pkg_conffiles "/etc/hubrt/boards/${HUBRT_PKG_BOARD}.yaml" "/etc/default/hubd")
 # The hub's configuration, and its conformance profile where it has one (hubctl conformance on
