@@ -41,6 +41,7 @@ _hubrt_pkg_fact(HUBRT_PKG_WATCHDOG_SEC watchdog_sec)
 _hubrt_pkg_fact(_pkg_gpio gpio)
 string(JSON _pkg_can_count LENGTH "${_pkg_facts}" can)
 string(JSON _pkg_serial_count LENGTH "${_pkg_facts}" serial_devices)
+string(JSON _pkg_input_count LENGTH "${_pkg_facts}" input_devices)
 
 if(NOT HUBRT_PKG_BOARD STREQUAL HUBRT_PACKAGE_BOARD)
   message(FATAL_ERROR "${_pkg_board_file} names board '${HUBRT_PKG_BOARD}': hubd finds boards by file "
@@ -63,8 +64,12 @@ if(_pkg_gpio)
   string(APPEND HUBRT_PKG_SYSUSERS_GROUPS "g gpio -\nm hubrt gpio\n")
 endif()
 if(_pkg_serial_count GREATER 0)
-  list(APPEND _pkg_groups dialout)  # Modbus RTU serial devices (/dev/ttyUSB*, /dev/ttyAMA*)
+  list(APPEND _pkg_groups dialout)  # Modbus RTU, serial RFID readers (/dev/ttyUSB*, /dev/ttyAMA*)
   string(APPEND HUBRT_PKG_SYSUSERS_GROUPS "m hubrt dialout\n")
+endif()
+if(_pkg_input_count GREATER 0)
+  list(APPEND _pkg_groups input)  # RFID keyboard-wedge readers (/dev/input/event*)
+  string(APPEND HUBRT_PKG_SYSUSERS_GROUPS "m hubrt input\n")
 endif()
 string(STRIP "${HUBRT_PKG_SYSUSERS_GROUPS}" HUBRT_PKG_SYSUSERS_GROUPS)
 if(_pkg_groups)
@@ -114,11 +119,15 @@ endforeach()
 # --- contents: everything in component hubrt-board, paths relative to / ------------------------
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
 install(TARGETS hubd hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+if(HUBRT_PKG_HUB STREQUAL "operator_hub")
+  install(TARGETS operator-enrol RUNTIME DESTINATION usr/bin ${_pkg_component})  # the allow-list's writer
+endif()
 install(FILES "${_pkg_board_file}" DESTINATION etc/hubrt/boards ${_pkg_component})
 set(_pkg_conffiles "/etc/hubrt/boards/${HUBRT_PKG_BOARD}.yaml" "/etc/default/hubd")
 # The hub's configuration, and its conformance profile where it has one (hubctl conformance on
 # the Pi finds it there).
-foreach(file ${HUBRT_PKG_HUB}.yaml conformance.yaml)
+# operators.list: the operator hub's allow-list (a conffile: enrolled operators survive upgrades).
+foreach(file ${HUBRT_PKG_HUB}.yaml conformance.yaml operators.list)
   if(EXISTS "${_pkg_hub_dir}/${file}")
     install(FILES "${_pkg_hub_dir}/${file}" DESTINATION etc/hubrt/hubs/${HUBRT_PKG_HUB} ${_pkg_component})
     list(APPEND _pkg_conffiles "/etc/hubrt/hubs/${HUBRT_PKG_HUB}/${file}")

@@ -52,6 +52,13 @@ Expected<BoardFacts> package_facts(const hal::BoardConfig& board, const config::
       }
     }
   }
+  for (const hal::BoardBadgeReader& reader : board.badge_readers) {
+    auto& devices =
+        reader.config.kind == hal::BadgeReaderKind::kSerial ? facts.serial_devices : facts.input_devices;
+    if (std::find(devices.begin(), devices.end(), reader.config.device) == devices.end()) {
+      devices.push_back(reader.config.device);
+    }
+  }
   return facts;
 }
 
@@ -71,6 +78,7 @@ std::string to_json(const BoardFacts& facts) {
       {"gpio", facts.gpio},
       {"can", can},
       {"serial_devices", facts.serial_devices},
+      {"input_devices", facts.input_devices},
   };
   return json.dump(2);
 }

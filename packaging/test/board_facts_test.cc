@@ -125,6 +125,15 @@ TEST(PackageFacts, JsonCarriesEveryFact) {
   EXPECT_EQ(json.at("can").at(0).at("interface"), "can0");
   EXPECT_EQ(json.at("can").at(0).at("bitrate"), 500000);
   EXPECT_TRUE(json.at("serial_devices").empty());
+  EXPECT_TRUE(json.at("input_devices").empty());
+}
+
+TEST(PackageFacts, AnRfidReaderNeedsItsDeviceGroup) {
+  auto facts = package_facts(shipped_board("rpi4-operator-hub"), shipped_hub("operator_hub"));
+  ASSERT_TRUE(facts) << facts.error().message;
+  EXPECT_EQ(facts->input_devices, std::vector<std::string>{"/dev/input/by-id/usb-rfid-reader-event-kbd"});
+  EXPECT_TRUE(facts->serial_devices.empty());
+  EXPECT_TRUE(facts->gpio);
 }
 
 }  // namespace

@@ -33,6 +33,10 @@
 #include "mir_com_typed.h"
 #include "pose_saver_reflect.h"
 #include "robot_mover_reflect.h"
+#include "operator_hub_reflect.h"
+#include "operator_hub_typed.h"
+#include "operator_panel_reflect.h"
+#include "operator_panel_typed.h"
 #include "rsp_reflect.h"
 #include "rsp_typed.h"
 #include "signal_lamp_reflect.h"
@@ -316,6 +320,8 @@ TEST(CommandCorpus, EveryStringFieldOfEveryCommandTypeRejectsBadTextAndReportsIt
   run_corpus<hub_msgs::RobotMoverCommandView, hub_msgs::RobotMoverState>();
   run_corpus<hub_msgs::PoseSaverCommandView, hub_msgs::PoseSaverState>();
   run_corpus<hub_msgs::MirComCommandView, hub_msgs::MirComState>();
+  run_corpus<hub_msgs::OperatorPanelCommandView, hub_msgs::OperatorPanelState>();
+  run_corpus<hub_msgs::OperatorHubCommandView, hub_msgs::OperatorHubState>();
   run_check_fields_corpus<hub_msgs_msg_dds__StationCommand_>();
 
   // Every Command type built into hubrt (target_type, target_name, action first) is in

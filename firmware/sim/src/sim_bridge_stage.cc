@@ -34,13 +34,18 @@ Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Part
   if (!fault_topic) return std::move(fault_topic).error();
   auto fault_reader = dds::Reader<hub_msgs_msg_dds__SimFault_>::create(participant, *fault_topic);
   if (!fault_reader) return std::move(fault_reader).error();
+  auto badge_topic = dds::Topic<hub_msgs_msg_dds__SimBadge_>::create(participant, kSimBadgeTopic);
+  if (!badge_topic) return std::move(badge_topic).error();
+  auto badge_reader = dds::Reader<hub_msgs_msg_dds__SimBadge_>::create(participant, *badge_topic);
+  if (!badge_reader) return std::move(badge_reader).error();
   auto signals_topic =
       dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(hub_name));
   if (!signals_topic) return std::move(signals_topic).error();
   auto writer = dds::Writer<hub_msgs_msg_dds__SimSignals_>::create(participant, *signals_topic);
   if (!writer) return std::move(writer).error();
-  Entities entities{std::move(*input_topic),  std::move(*input_reader),  std::move(*fault_topic),
-                    std::move(*fault_reader), std::move(*signals_topic), std::move(*writer)};
+  Entities entities{std::move(*input_topic),   std::move(*input_reader), std::move(*fault_topic),
+                    std::move(*fault_reader),  std::move(*badge_topic),  std::move(*badge_reader),
+                    std::move(*signals_topic), std::move(*writer)};
   return std::unique_ptr<SimBridgeStage>(
       new SimBridgeStage(std::move(entities), std::move(hub_name), board, fake, std::move(log)));
 }
@@ -102,6 +107,19 @@ void SimBridgeStage::before_nodes(const Instant& now) noexcept {
     const auto& input = input_.get();
     if (input.hub == nullptr || input.signal == nullptr || hub_name_ != input.hub) continue;
     apply(input.signal, input.active);
+  }
+  for (int i = 0; i < 16; ++i) {
+    const Result<bool> taken = dds_.badge_reader.take_next(badge_);
+    if (!taken.is_ok() || !taken.value()) break;
+    const auto& badge = badge_.get();
+    if (badge.hub == nullptr || badge.reader == nullptr || badge.text == nullptr || hub_name_ != badge.hub)
+      continue;
+    // The text is the simulated badge: it is logged by its length only (badges never in clear).
+    if (auto shown = apply_badge(fake_, badge.reader, badge.text); !shown) {
+      log_->warn("sim: hub '{}': {}", hub_name_, shown.error().message);
+    } else {
+      log_->info("sim: badge of {} byte(s) shown to {}", std::string_view(badge.text).size(), badge.reader);
+    }
   }
   for (int i = 0; i < 16; ++i) {
     const Result<bool> taken = dds_.fault_reader.take_next(fault_);

@@ -133,6 +133,15 @@ Expected<void> apply_input(hal::fake::FakeBackend& fake, std::string_view signal
   return {};
 }
 
+Expected<void> apply_badge(hal::fake::FakeBackend& fake, std::string_view reader, std::string_view text) {
+  auto* simulated = fake.badge_reader(reader);
+  if (simulated == nullptr) {
+    return make_error(ErrorCode::kNotFound, fmt::format("'{}' is not a simulated RFID reader", reader));
+  }
+  simulated->present(text);
+  return {};
+}
+
 Expected<void> apply_fault(hal::fake::FakeBackend& fake, const hal::BoardConfig& board,
                            const FaultRequest& request, Time now) {
   if (auto* platform = fake.mir_platform(request.device); platform != nullptr) {

@@ -61,6 +61,11 @@ Expected<std::string> load_http_authorization(const BoardHttpDevice& device) {
   return line;
 }
 
+const BoardBadgeReader* BoardConfig::find_badge_reader(std::string_view reader) const noexcept {
+  return find_by(badge_readers, reader,
+                 [](const BoardBadgeReader& r) -> const std::string& { return r.config.reader; });
+}
+
 const BoardGpioChip* BoardConfig::find_chip(std::string_view alias) const noexcept {
   return find_by(chips, alias, [](const BoardGpioChip& c) -> const std::string& { return c.alias; });
 }

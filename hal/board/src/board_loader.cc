@@ -33,7 +33,7 @@ Expected<std::vector<std::string>> parse_hubs(const YamlMap& root) {
 
 Expected<BoardConfig> parse_checked_board(const YamlMap& root) {
   if (auto ok = root.only_keys(
-          {"board", "description", "arch", "hub", "gpio", "can", "modbus", "http", "simulation"});
+          {"board", "description", "arch", "hub", "gpio", "can", "modbus", "http", "rfid", "simulation"});
       !ok) {
     return std::move(ok).error();
   }
@@ -56,8 +56,9 @@ Expected<BoardConfig> parse_checked_board(const YamlMap& root) {
   if (!hubs) return std::move(hubs).error();
   board.hubs = std::move(*hubs);
 
-  if (!root.has("gpio") && !root.has("can") && !root.has("modbus") && !root.has("http")) {
-    return root.error("the board declares no devices: give at least one of gpio, can, modbus, http");
+  if (!root.has("gpio") && !root.has("can") && !root.has("modbus") && !root.has("http") &&
+      !root.has("rfid")) {
+    return root.error("the board declares no devices: give at least one of gpio, can, modbus, http, rfid");
   }
   if (root.has("gpio")) {
     auto gpio = root.map("gpio");
@@ -66,6 +67,9 @@ Expected<BoardConfig> parse_checked_board(const YamlMap& root) {
   }
   if (root.has("can")) {
     if (auto ok = board_detail::parse_can(root, board); !ok) return std::move(ok).error();
+  }
+  if (root.has("rfid")) {
+    if (auto ok = board_detail::parse_rfid(root, board); !ok) return std::move(ok).error();
   }
   const bool simulation_board = root.has("simulation");
   if (root.has("modbus")) {

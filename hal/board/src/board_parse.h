@@ -30,6 +30,7 @@ Expected<void> parse_can(const YamlMap& root, BoardConfig& board);
 Expected<void> parse_modbus(const YamlMap& root, BoardConfig& board, bool simulation_board);
 // http: REST devices. An inline authorization is accepted on simulation boards only.
 Expected<void> parse_http(const YamlMap& root, BoardConfig& board, bool simulation_board);
+Expected<void> parse_rfid(const YamlMap& root, BoardConfig& board);
 Expected<void> parse_simulation(const YamlMap& simulation, BoardConfig& board);
 
 }  // namespace hubrt::hal::board_detail

@@ -21,6 +21,9 @@ std::string declared_as(const BoardConfig& board, std::string_view name) {
   if (const BoardHttpDevice* device = board.find_http(name)) {
     return fmt::format("an HTTP device (line {})", device->where.line);
   }
+  if (const BoardBadgeReader* reader = board.find_badge_reader(name)) {
+    return fmt::format("an RFID reader (line {})", reader->where.line);
+  }
   return {};
 }
 
@@ -70,8 +73,13 @@ Expected<void> check_requirements(const BoardConfig& board, const BoardRequireme
       !ok) {
     return ok;
   }
-  return check_kind(board, required, "HTTP device", required.http_devices,
-                    [&](const std::string& n) { return board.find_http(n) != nullptr; });
+  if (auto ok = check_kind(board, required, "HTTP device", required.http_devices,
+                           [&](const std::string& n) { return board.find_http(n) != nullptr; });
+      !ok) {
+    return ok;
+  }
+  return check_kind(board, required, "RFID reader", required.badge_readers,
+                    [&](const std::string& n) { return board.find_badge_reader(n) != nullptr; });
 }
 
 }  // namespace hubrt::hal

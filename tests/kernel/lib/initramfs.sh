@@ -4,7 +4,7 @@
 # Sourced by tests/kernel/run; sets INITRD.
 
 # Loaded by guest/init in this order. configfs/9p may be built in; modprobe then does nothing.
-KT_MODULES="configfs virtio_pci 9pnet_virtio 9p can can-raw vcan irq-sim gpio-sim veth sch_netem"
+KT_MODULES="configfs virtio_pci 9pnet_virtio 9p can can-raw vcan irq-sim gpio-sim veth sch_netem evdev uinput"
 
 build_initramfs() {
   local here=$1

@@ -43,6 +43,9 @@ Expected<std::unique_ptr<FakeBackend>> FakeBackend::create(const BoardConfig& bo
   if (auto ok = backend->build_can(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_modbus(); !ok) return std::move(ok).error();
   if (auto ok = backend->build_http(); !ok) return std::move(ok).error();
+  for (const BoardBadgeReader& reader : board.badge_readers) {
+    backend->badge_readers_.push_back(std::make_unique<SimulatedBadgeReader>(reader.config));
+  }
   return backend;
 }
 
@@ -238,6 +241,23 @@ MirPlatform* FakeBackend::mir_platform(std::string_view http_device) noexcept {
 MirSimServer* FakeBackend::mir_server(std::string_view http_device) noexcept {
   for (SimulatedMir& mir : mirs_) {
     if (mir.device == http_device) return mir.server.get();
+  }
+  return nullptr;
+}
+
+Expected<std::unique_ptr<BadgeReader>> FakeBackend::open_badge_reader(const BadgeReaderConfig& config) {
+  SimulatedBadgeReader* reader = badge_reader(config.reader);
+  if (reader == nullptr) {
+    return make_error(
+        ErrorCode::kNotFound,
+        fmt::format("{}: no simulated RFID reader of this name on board {}", config.reader, board_.name));
+  }
+  return reader->open();
+}
+
+SimulatedBadgeReader* FakeBackend::badge_reader(std::string_view reader) noexcept {
+  for (auto& simulated : badge_readers_) {
+    if (simulated->config().reader == reader) return simulated.get();
   }
   return nullptr;
 }

@@ -1,10 +1,11 @@
-// A HAL backend opens devices. The hub never names a backend: hubd picks one (fake or linux) and
+// A HAL backend opens devices (GPIO lines, CAN buses, Modbus clients, RFID badge readers). The hub never names a backend: hubd picks one (fake or linux) and
 // passes it in, the board file says which chip, line, interface or endpoint each device is.
 #pragma once
 
 #include <memory>
 
 #include "hubrt/base/status.h"
+#include "hubrt/hal/badge_reader.h"
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/digital_io.h"
 #include "hubrt/hal/http_client.h"
@@ -31,9 +32,15 @@ class Backend {
   virtual Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) {
     return make_error(ErrorCode::kNotFound, config.device + ": this backend opens no HTTP devices");
   }
+  // An RFID badge reader. Not every backend has them: this default refuses with kNotFound.
+  virtual Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config);
 
  protected:
   Backend() = default;
 };
+
+inline Expected<std::unique_ptr<BadgeReader>> Backend::open_badge_reader(const BadgeReaderConfig& config) {
+  return make_error(ErrorCode::kNotFound, config.reader + ": this backend has no RFID badge readers");
+}
 
 }  // namespace hubrt::hal

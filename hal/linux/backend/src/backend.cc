@@ -4,6 +4,7 @@
 #include "hubrt/hal/httplib/open_httplib.h"
 #include "hubrt/hal/libmodbus/open_libmodbus.h"
 #include "hubrt/hal/linux/gpiod_lines.h"
+#include "hubrt/hal/rfid/open_badge_reader.h"
 #include "hubrt/hal/socketcan/open_socketcan.h"
 
 namespace hubrt::hal {
@@ -28,6 +29,10 @@ Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusCo
 
 Expected<std::unique_ptr<HttpClient>> LinuxBackend::open_http(const HttpConfig& config) {
   return httplib_client::open_httplib(config);
+}
+
+Expected<std::unique_ptr<BadgeReader>> LinuxBackend::open_badge_reader(const BadgeReaderConfig& config) {
+  return rfid::open_badge_reader(config);
 }
 
 }  // namespace hubrt::hal

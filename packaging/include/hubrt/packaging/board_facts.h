@@ -29,7 +29,8 @@ struct BoardFacts {
   std::chrono::seconds watchdog{0};         // WatchdogSec= of the unit
   bool gpio = false;                        // the hub opens GPIO chips: the service needs group gpio
   std::vector<PackagedCanInterface> can;    // one systemd-networkd .network file each
-  std::vector<std::string> serial_devices;  // Modbus RTU devices: the service needs group dialout
+  std::vector<std::string> serial_devices;  // Modbus RTU and serial RFID readers: group dialout
+  std::vector<std::string> input_devices;   // RFID keyboard-wedge readers (evdev): group input
 };
 
 // The systemd watchdog for a hub that pings it once per cycle: five periods, at least 2 s, whole

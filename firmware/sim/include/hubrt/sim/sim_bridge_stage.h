@@ -19,12 +19,14 @@
 #include "sim.h"
 
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimInput_, hub_msgs_msg_dds__SimInput__desc);
+HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimBadge_, hub_msgs_msg_dds__SimBadge__desc);
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimFault_, hub_msgs_msg_dds__SimFault__desc);
 HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__SimSignals_, hub_msgs_msg_dds__SimSignals__desc);
 
 namespace hubrt::sim {
 
 inline constexpr std::string_view kSimInputTopic = "/sim/input";
+inline constexpr std::string_view kSimBadgeTopic = "/sim/badge";
 inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
 
@@ -56,6 +58,8 @@ class SimBridgeStage final : public runtime::CycleStage {
     dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
     dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
     dds::Reader<hub_msgs_msg_dds__SimFault_> fault_reader;
+    dds::Topic<hub_msgs_msg_dds__SimBadge_> badge_topic;
+    dds::Reader<hub_msgs_msg_dds__SimBadge_> badge_reader;
     dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic;
     dds::Writer<hub_msgs_msg_dds__SimSignals_> signals_writer;
   };
@@ -73,6 +77,7 @@ class SimBridgeStage final : public runtime::CycleStage {
   std::shared_ptr<spdlog::logger> log_;
   dds::Sample<hub_msgs_msg_dds__SimInput_> input_;
   dds::Sample<hub_msgs_msg_dds__SimFault_> fault_;
+  dds::Sample<hub_msgs_msg_dds__SimBadge_> badge_;
   std::vector<hub_msgs_msg_dds__SimSignal_> wire_signals_;
   std::vector<hub_msgs_msg_dds__SimValve_> wire_valves_;
   std::vector<hub_msgs_msg_dds__SimLift_> wire_lifts_;

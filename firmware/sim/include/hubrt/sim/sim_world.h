@@ -17,6 +17,10 @@ namespace hubrt::sim {
 // Thread-safety: the GPIO side of the backend: call on the thread that runs the cycle.
 Expected<void> apply_input(hal::fake::FakeBackend& fake, std::string_view signal, bool active);
 
+// Shows the simulated RFID reader `reader` a badge: it reads `text` next. Errors: kNotFound when
+// the board has no such reader. Thread-safety: as apply_input.
+Expected<void> apply_badge(hal::fake::FakeBackend& fake, std::string_view reader, std::string_view text);
+
 // One device fault (or recovery), as sim.idl's SimFault_ documents:
 //   smart tool, by CAN bus:   power_off, power_on, alarm (value: alarm bits, 0 = overcurrent),
 //                             bus_off, bus_on, slip, no_slip

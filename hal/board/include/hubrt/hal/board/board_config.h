@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hubrt/base/time.h"
+#include "hubrt/hal/badge_reader.h"
 #include "hubrt/hal/can_bus.h"
 #include "hubrt/hal/common/gpio_chip_selector.h"
 #include "hubrt/hal/digital_io.h"
@@ -58,6 +59,11 @@ struct BoardHttpDevice {
   // simulation boards, which may give it inline.
   HttpConfig config;
   std::string authorization_file;  // empty: none (or inline on a simulation board)
+  SourceLocation where;
+};
+
+struct BoardBadgeReader {
+  BadgeReaderConfig config;  // config.reader is the logical name (key under rfid:)
   SourceLocation where;
 };
 
@@ -141,6 +147,7 @@ struct BoardConfig {
   std::vector<BoardCanBus> can;
   std::vector<BoardModbusDevice> modbus;
   std::vector<BoardHttpDevice> http;
+  std::vector<BoardBadgeReader> badge_readers;  // rfid:
   std::optional<SimulationConfig> simulation;
 
   // Look-ups by logical name; nullptr when absent. Never allocate.
@@ -149,6 +156,7 @@ struct BoardConfig {
   [[nodiscard]] const BoardCanBus* find_can(std::string_view bus) const noexcept;
   [[nodiscard]] const BoardModbusDevice* find_modbus(std::string_view device) const noexcept;
   [[nodiscard]] const BoardHttpDevice* find_http(std::string_view device) const noexcept;
+  [[nodiscard]] const BoardBadgeReader* find_badge_reader(std::string_view reader) const noexcept;
   [[nodiscard]] const BoardGpioChip* find_chip(std::string_view alias) const noexcept;
   [[nodiscard]] bool wired_for(std::string_view hub) const noexcept;
 };

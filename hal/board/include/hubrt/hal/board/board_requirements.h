@@ -16,6 +16,8 @@ struct BoardRequirements {
   std::vector<std::string> can_buses;       // CAN bus names
   std::vector<std::string> modbus_devices;  // Modbus device names
   std::vector<std::string> http_devices;    // HTTP (REST) device names
+  // RFID reader names (rfid:). Initialised so that requirement lists written before it still compile.
+  std::vector<std::string> badge_readers{};
 };
 
 // Checks that `board` is wired for `required.hub` and declares every required signal, bus and

@@ -1,7 +1,8 @@
 // The Backend for a whole station on one host: fake GPIO chips with simulated valves, pressure
 // supplies, dock sensors and settable inputs; a virtual CAN network with the simulated smart tool
 // controller; the lift-drive simulator as a real libmodbus TCP server on loopback, reached through
-// the real libmodbus client. Built from a board's simulation section (boards/host-sim.yaml).
+// the real libmodbus client; a simulated RFID reader for every rfid: reader of the board. Built
+// from a board's simulation section (boards/host-sim.yaml).
 #pragma once
 
 #include <memory>
@@ -22,6 +23,7 @@
 #include "hubrt/hal/fake/pneumatic_valve.h"
 #include "hubrt/hal/fake/pressure_supply.h"
 #include "hubrt/hal/fake/settable_input.h"
+#include "hubrt/hal/fake/simulated_badge_reader.h"
 #include "hubrt/hal/fake/smart_tool_simulator.h"
 #include "hubrt/hal/fake/virtual_can_network.h"
 
@@ -57,6 +59,9 @@ class FakeBackend final : public Backend {
   // A real cpp-httplib client connected to the MiR simulator of config.device (its port put in).
   // Errors: kNotFound (no simulator for that device), those of open_httplib.
   Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) override;
+  // The simulated reader of the board's rfid: entry config.reader (every reader of the board has
+  // one). Errors: kNotFound (no such reader, or it is unplugged).
+  Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config) override;
 
   // --- Test hooks, by logical name (nullptr when the board has no such thing) --------------------
   [[nodiscard]] FakeGpio& gpio() noexcept { return gpio_; }
@@ -71,6 +76,7 @@ class FakeBackend final : public Backend {
   [[nodiscard]] LiftDriveServer* lift_drive_server(std::string_view modbus_device) noexcept;
   [[nodiscard]] MirPlatform* mir_platform(std::string_view http_device) noexcept;
   [[nodiscard]] MirSimServer* mir_server(std::string_view http_device) noexcept;
+  [[nodiscard]] SimulatedBadgeReader* badge_reader(std::string_view reader) noexcept;
 
   // The chip and line a signal is wired to, for the chip's own hooks (history, faults).
   struct Wiring {
@@ -128,6 +134,7 @@ class FakeBackend final : public Backend {
   std::vector<std::pair<std::string, std::unique_ptr<SmartToolSimulator>>> smart_tools_;  // after the network
   std::vector<SimulatedLift> lifts_;
   std::vector<SimulatedMir> mirs_;
+  std::vector<std::unique_ptr<SimulatedBadgeReader>> badge_readers_;
 };
 
 }  // namespace hubrt::hal::fake

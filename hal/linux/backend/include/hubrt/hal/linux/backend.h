@@ -22,6 +22,8 @@ class LinuxBackend final : public Backend {
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
   // cpp-httplib (http/): errors of httplib_client::open_httplib.
   Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) override;
+  // libevdev or termios, as config.kind says: rfid::open_badge_reader (rfid/).
+  Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config) override;
 };
 
 }  // namespace hubrt::hal
