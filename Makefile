@@ -8,6 +8,8 @@
 #   make kernel-test the Linux backends and a whole hub against vcan and gpio-sim in a VM
 #                    (tests/kernel/README.md; KERNEL_PRESET=host-asan reuses the ASan build)
 #   make cross-test  arm64 cross build, unit tests under qemu-user (ARCH=armhf for the other)
+#   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
+#                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
@@ -15,9 +17,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,15p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test ui-test cross-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -77,6 +79,14 @@ kernel-test: deps
 	@cmake --preset $(KERNEL_PRESET) >/dev/null
 	@$(CMAKE_BUILD) $(KERNEL_PRESET) -j$(JOBS)
 	@tests/kernel/run --build-dir build/$(KERNEL_PRESET)
+
+# The operator screen in a real browser (tests/ui/README.md); builds only hubd and hubctl if the
+# default suite has not.
+ui-test:
+	@toolchain/install-deps --ui
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
+	@tests/ui/run --build-dir build/host-asan
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
