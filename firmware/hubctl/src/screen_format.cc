@@ -218,8 +218,10 @@ std::string initial_html(const OperatorView& op, const std::optional<Instruction
   const bool verified = op.verified && op.fresh;
   std::string who = verified ? op.name : std::string("nobody verified");
   std::string text = instruction ? instruction->text : std::string("no instruction yet");
-  return fmt::format("<p id=\"who\" class=\"{}\">{}</p>\n<p id=\"instruction\">{}</p>",
-                     verified ? "verified" : "unverified", html_escape(who), html_escape(text));
+  const std::string step = instruction ? instruction->step : std::string();
+  return fmt::format(
+      "<p id=\"who\" class=\"{}\">{}</p>\n<h2 id=\"instruction-step\">{}</h2>\n<p id=\"instruction\">{}</p>",
+      verified ? "verified" : "unverified", html_escape(who), html_escape(step), html_escape(text));
 }
 
 }  // namespace hubrt::hubctl::screen

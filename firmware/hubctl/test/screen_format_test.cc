@@ -121,10 +121,11 @@ TEST(ScreenSnapshot, StationRowsAndInitialHtmlEscaped) {
   EXPECT_EQ(snap["station"][2]["fresh"], "waiting");
   EXPECT_TRUE(is_valid_utf8(safe_json(snap)));
 
-  const std::string html = initial_html(op, Instruction{"bolts", "Place the <bolts>", 7});
+  const std::string html = initial_html(op, Instruction{"<bolts>", "Place the <bolts>", 7});
   EXPECT_NE(html.find("&lt;img src=x onerror=alert(1)&gt;"), std::string::npos);
   EXPECT_NE(html.find("Place the &lt;bolts&gt;"), std::string::npos);
   EXPECT_EQ(html.find("<img"), std::string::npos);
+  EXPECT_NE(html.find("<h2 id=\"instruction-step\">&lt;bolts&gt;</h2>"), std::string::npos);
   EXPECT_EQ(html.find("<bolts"), std::string::npos);
 }
 
