@@ -3,7 +3,8 @@
 // free TCP port: the page loads, server-sent events deliver a State change (a badge verifies Anna),
 // a "done" press without a verified operator is refused (409) and the hub counts nothing, and with
 // Anna verified it is accepted and the hub's confirm_seq grows. Plus the guards: no press without
-// the page's header, none from a foreign Host, none twice within the interval.
+// the page's header, none from a foreign Host, none twice within the interval. And hubctl watch, which
+// shares the screen's discovery (station_watch), still shows the panel.
 #include <httplib.h>
 
 #include <csignal>
@@ -263,6 +264,21 @@ TEST_F(HubctlServeTest, PageEventsAndTheConfirmRule) {
   auto status = serve_->wait(kPatience);
   ASSERT_TRUE(status) << status.error().message;
   EXPECT_TRUE(status->exited_with(0)) << status->describe() << serve_->stderr_text();
+}
+
+// hubctl watch shares the screen's discovery and freshness (station_watch): it still finds the
+// operator panel's State and shows it operational and fresh.
+TEST_F(HubctlServeTest, WatchSeesTheSameStation) {
+  auto watch = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, {"watch", "--plain", "--duration", "4"},
+                                                 domain_->env());
+  ASSERT_TRUE(watch) << watch.error().message;
+  auto status = watch->wait(kPatience);
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << watch->stderr_text();
+  const std::string out = watch->stdout_text();
+  EXPECT_NE(out.find("/operator_hub/panel/state"), std::string::npos) << out;
+  EXPECT_NE(out.find("operational"), std::string::npos) << out;
+  EXPECT_NE(out.find("operator_verified: false"), std::string::npos) << out;
 }
 
 }  // namespace
