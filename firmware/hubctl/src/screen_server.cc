@@ -198,6 +198,9 @@ void add_routes(httplib::Server& server, Shared& shared, DdsSide& dds, screen::C
       res.set_content("too many event streams\n", "text/plain; charset=utf-8");
       return;
     }
+    // cpp-httplib calls the provider again and again on this connection's thread while it returns
+    // true; false (a write to a gone client failed) ends the response; the releaser runs once
+    // either way (httplib.h: set_chunked_content_provider, write_content_chunked).
     auto last = std::make_shared<std::uint64_t>(0);
     res.set_chunked_content_provider(
         "text/event-stream",
@@ -264,6 +267,8 @@ int run_serve(const ServeOptions& options) {
 
   httplib::Server server;
   server.new_task_queue = [] { return new httplib::ThreadPool(kHttpThreads); };
+  // cpp-httplib 0.11.4 (yhirose/cpp-httplib, httplib.h, Server::read_content): a body over this
+  // is answered 413 before any handler runs (hubrt_hubctl_serve_test checks it).
   server.set_payload_max_length(kMaxBody);
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
