@@ -17,7 +17,9 @@ int main(int argc, char** argv) {
   hubrt::hubctl::add_watch_command(app, exit_code);
   hubrt::hubctl::add_conformance_command(app, exit_code);
   hubrt::hubctl::add_play_command(app, exit_code);
+#ifdef HUBRT_HUBCTL_SERVE  // not in a cross build whose sysroot lacks cpp-httplib (CMakeLists.txt)
   hubrt::hubctl::add_serve_command(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
