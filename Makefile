@@ -13,6 +13,8 @@
 #   make netem-test  a hub and hubctl across a link with 10 % loss / 50 ms delay (sch_netem) in the
 #                    kernel tier's VM: heartbeat and echo figures (tests/net/netem-in-vm)
 #   make ros1-test   hubbridge between Debian's ROS 1 and the station, on the ASan build (docs/ros1-bridge.md)
+#   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
+#                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
@@ -20,9 +22,9 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,18p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,20p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test board deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -82,6 +84,14 @@ kernel-test: deps
 	@cmake --preset $(KERNEL_PRESET) >/dev/null
 	@$(CMAKE_BUILD) $(KERNEL_PRESET) -j$(JOBS)
 	@tests/kernel/run --build-dir build/$(KERNEL_PRESET)
+
+# The operator screen in a real browser (tests/ui/README.md); builds only hubd and hubctl if the
+# default suite has not.
+ui-test:
+	@toolchain/install-deps --ui
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
+	@tests/ui/run --build-dir build/host-asan
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
