@@ -16,15 +16,17 @@
 #   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
 #                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
+#   make deploy-test the Tool ECU package installed over ssh on an arm64 VM under systemd
+#                    (tests/deploy/README.md; slow the first time: builds the VM image)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
 JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,20p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,22p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test board deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test board deploy-test deploy-docs format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -117,6 +119,11 @@ ros1-test: deps
 board:
 	@test -n "$(BOARD)" || { echo "make board: say which, e.g. make board BOARD=rpi4-tool-ecu" >&2; exit 2; }
 	@toolchain/package-board $(BOARD)
+
+# Reuses the package of the cross tier (build/packages) when there is one, else makes it.
+deploy-test: deps
+	@toolchain/install-deps --deploy
+	@tests/deploy/run
 
 deploy-docs: deps
 	@cmake --preset host-release >/dev/null
