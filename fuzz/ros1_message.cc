@@ -16,8 +16,9 @@
 
 namespace {
 
-constexpr const char* kTypes[] = {"hub_msgs/msg/DockState",   "hub_msgs/msg/DockCommand", "hub_msgs/msg/SimSignals",
-                                  "hub_msgs/msg/ToolEcuState", "hub_msgs/msg/RspState",    "hub_msgs/msg/StationState"};
+constexpr const char* kTypes[] = {"hub_msgs/msg/DockState",  "hub_msgs/msg/DockCommand",
+                                  "hub_msgs/msg/SimSignals", "hub_msgs/msg/ToolEcuState",
+                                  "hub_msgs/msg/RspState",   "hub_msgs/msg/StationState"};
 constexpr std::size_t kTypeCount = sizeof kTypes / sizeof kTypes[0];
 
 // The hub types' ROS 1 definitions, built once from the tree the fuzzer runs in.

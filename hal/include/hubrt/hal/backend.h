@@ -1,5 +1,6 @@
-// A HAL backend opens devices (GPIO lines, CAN buses, Modbus clients, RFID badge readers). The hub never names a backend: hubd picks one (fake or linux) and
-// passes it in, the board file says which chip, line, interface or endpoint each device is.
+// A HAL backend opens devices (GPIO lines, CAN buses, Modbus clients, RFID badge readers). The hub never
+// names a backend: hubd picks one (fake or linux) and passes it in, the board file says which chip, line,
+// interface or endpoint each device is.
 #pragma once
 
 #include <memory>

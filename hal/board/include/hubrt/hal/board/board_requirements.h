@@ -15,7 +15,7 @@ struct BoardRequirements {
   std::vector<std::string> outputs;         // logical output signals
   std::vector<std::string> can_buses;       // CAN bus names
   std::vector<std::string> modbus_devices;  // Modbus device names
-  std::vector<std::string> http_devices;    // HTTP (REST) device names
+  std::vector<std::string> http_devices{};  // HTTP (REST) device names
   // RFID reader names (rfid:). Initialised so that requirement lists written before it still compile.
   std::vector<std::string> badge_readers{};
 };
