@@ -56,6 +56,9 @@ struct Options {
 // The exit statuses are the table of hubrt/base/exit_codes.h, shared with hubctl.
 constexpr int kExitRuntime = exit_codes::kFailure;
 constexpr int kExitConfig = exit_codes::kUsage;
+// How long systemd waits for the first cycle (SystemdNotifier::allow_startup): the unit's
+// WatchdogSec= (2 s) is for a running cycle, not for loading files, opening devices and joining DDS.
+constexpr Duration kStartupWatchdog = std::chrono::seconds(30);
 
 std::string signal_name(int signal) {
   const char* abbreviation = sigabbrev_np(signal);  // glibc >= 2.32
@@ -140,6 +143,8 @@ int run(const Options& options) {
   if (!backend) return fail(backend.error().message, kExitConfig);
   if (options.safe_outputs) return run_safe_outputs({*board_file, *hub_file, *backend}, **logger);
   install_crash_handlers();
+  SystemdNotifier systemd;
+  systemd.allow_startup(kStartupWatchdog);
   // Before the first participant: /diagnostics counts the oversize samples Cyclone drops.
   dds::count_oversize_samples();
   auto secured = security_choice(options, *hub_file);
@@ -214,7 +219,6 @@ int run(const Options& options) {
   }
   const std::string summary = describe((*assembled)->config, (*assembled)->board.name);
 
-  SystemdNotifier systemd;
   spdlog::info("running {}", summary);
   systemd.ready(summary);
   runtime::RunHooks hooks;

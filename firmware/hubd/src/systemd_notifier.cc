@@ -14,10 +14,29 @@ SystemdNotifier::SystemdNotifier() noexcept {
   if (enabled_ && sd_watchdog_enabled(0, &usec) > 0) watchdog_ = std::chrono::microseconds(usec);
 }
 
+namespace {
+
+std::string watchdog_usec(Duration watchdog) {
+  return "WATCHDOG_USEC=" +
+         std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(watchdog).count());
+}
+
+}  // namespace
+
+void SystemdNotifier::allow_startup(Duration allowance) const noexcept {
+  if (watchdog_ <= Duration::zero() || allowance <= watchdog_) return;
+  try {
+    sd_notify(0, (watchdog_usec(allowance) + "\nWATCHDOG=1").c_str());
+  } catch (...) {  // std::bad_alloc: start-up keeps the unit's watchdog time
+  }
+}
+
 void SystemdNotifier::ready(std::string_view status) const noexcept {
   if (!enabled_) return;
   try {
-    sd_notify(0, ("READY=1\nSTATUS=" + std::string(status)).c_str());
+    std::string message = "READY=1\n";
+    if (watchdog_ > Duration::zero()) message += watchdog_usec(watchdog_) + "\nWATCHDOG=1\n";
+    sd_notify(0, (message + "STATUS=" + std::string(status)).c_str());
   } catch (...) {  // std::bad_alloc: READY is then sent without the status
     sd_notify(0, "READY=1");
   }
