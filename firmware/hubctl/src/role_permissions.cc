@@ -43,7 +43,10 @@ Expected<void> add_hub(TopicPermissions& out, const std::string& hub, bool simul
   add_unique(out.publish, dds(std::string(hub_api::kDiagnosticsTopic)));
   if (simulation) {
     add_unique(out.publish, fmt::format("rt/sim/{}/signals", config->name));
+    // Every topic a hub's sim bridge reads (firmware/sim: sim_bridge_stage.h, kSim*Topic): a
+    // simulated hub that may not read one of them does not start.
     add_unique(out.subscribe, "rt/sim/input");
+    add_unique(out.subscribe, "rt/sim/badge");
     add_unique(out.subscribe, "rt/sim/fault");
   }
   return {};
