@@ -2,6 +2,8 @@
 #include "hubrt/ros1/definition.h"
 
 #include <algorithm>
+#include <map>
+#include <vector>
 
 #include <fmt/format.h>
 #include <openssl/evp.h>
@@ -23,14 +25,16 @@ std::string md5_hex(std::string_view text) {
   return hex;
 }
 
-// Dependencies of `name`, depth first, each once (genmsg get_all_depends + _unique_deps).
+// Dependencies of `name`, depth first, each once (genmsg get_all_depends + _unique_deps: the first
+// occurrences of a full depth-first walk are those of a walk that skips a type seen before). The
+// skip also ends the walk of a definition that contains itself (a ROS 1 peer's: found by fuzzing).
 Expected<void> collect_depends(const Messages& messages, std::string_view name,
                                std::vector<std::string>& out) {
   const auto it = messages.find(name);
   if (it == messages.end()) return missing(name);
   for (const Field& f : it->second.fields) {
-    if (f.builtin()) continue;
-    if (std::find(out.begin(), out.end(), f.type) == out.end()) out.push_back(f.type);
+    if (f.builtin() || std::find(out.begin(), out.end(), f.type) != out.end()) continue;
+    out.push_back(f.type);
     if (auto ok = collect_depends(messages, f.type, out); !ok) return ok;
   }
   return {};
@@ -158,22 +162,46 @@ Expected<std::string> full_definition(const Messages& messages, std::string_view
   return out;
 }
 
-Expected<std::string> md5sum(const Messages& messages, std::string_view full_name) {
+namespace {
+
+// genmsg's md5sum of one type, each nested type's sum computed once (`done`). The definitions may
+// come from a ROS 1 peer: a type that contains itself, directly or through others (`open`), is an
+// error instead of endless recursion, and a wide tree of shared types costs one sum per type.
+Expected<std::string> md5sum_of(const Messages& messages, std::string_view full_name,
+                                std::map<std::string, std::string, std::less<>>& done,
+                                std::vector<std::string_view>& open) {
+  if (const auto known = done.find(full_name); known != done.end()) return known->second;
   const auto it = messages.find(full_name);
   if (it == messages.end()) return missing(full_name);
+  if (std::find(open.begin(), open.end(), full_name) != open.end()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: the message definition contains itself", full_name));
+  }
+  open.push_back(full_name);
   std::string text;
   for (const Constant& c : it->second.constants) text += fmt::format("{} {}={}\n", c.type, c.name, c.value);
   for (const Field& f : it->second.fields) {
     if (f.builtin()) {
       text += f.text() + "\n";
     } else {
-      auto nested = md5sum(messages, f.type);
+      auto nested = md5sum_of(messages, f.type, done, open);
       if (!nested) return nested;
       text += fmt::format("{} {}\n", *nested, f.name);
     }
   }
+  open.pop_back();
   while (!text.empty() && text.back() == '\n') text.pop_back();
-  return md5_hex(text);
+  std::string sum = md5_hex(text);
+  done.emplace(std::string(full_name), sum);
+  return sum;
+}
+
+}  // namespace
+
+Expected<std::string> md5sum(const Messages& messages, std::string_view full_name) {
+  std::map<std::string, std::string, std::less<>> done;
+  std::vector<std::string_view> open;
+  return md5sum_of(messages, full_name, done, open);
 }
 
 std::string first_difference(const Messages& expected, const Messages& announced,

@@ -116,5 +116,26 @@ TEST(Ros1Definition, MalformedDefinitionsAreErrors) {
   EXPECT_FALSE(full_definition(incomplete, "p/T"));
 }
 
+// A ROS 1 peer announces the definitions: one whose type contains itself (found by the fuzzer as
+// a stack overflow in md5sum) is an error, directly or through another type.
+TEST(Ros1Definition, ADefinitionThatContainsItselfIsAnError) {
+  Messages direct;
+  direct["p/T"] = *parse_ros1_msg("uint8 a\np/T inner", "p/T");
+  auto sum = md5sum(direct, "p/T");
+  ASSERT_FALSE(sum);
+  EXPECT_NE(sum.error().message.find("p/T: the message definition contains itself"), std::string::npos)
+      << sum.error().message;
+  Messages through;
+  through["p/T"] = *parse_ros1_msg("p/U[] us", "p/T");
+  through["p/U"] = *parse_ros1_msg("string s\np/T back", "p/U");
+  EXPECT_FALSE(md5sum(through, "p/T"));
+  EXPECT_TRUE(full_definition(through, "p/T"));  // each type once, and it ends
+  // A type used twice is no cycle.
+  Messages shared;
+  shared["p/T"] = *parse_ros1_msg("p/U first\np/U second", "p/T");
+  shared["p/U"] = *parse_ros1_msg("int32 x", "p/U");
+  EXPECT_TRUE(md5sum(shared, "p/T"));
+}
+
 }  // namespace
 }  // namespace hubrt::ros1
