@@ -261,8 +261,11 @@ TEST(OperatorBoardTest, CheckReportsAnAllowListMistakeWithItsLine) {
 TEST(OperatorEnrolTest, AddsAnOperatorAsAHashOnly) {
   const auto file = std::filesystem::path(::testing::TempDir()) / "enrolled.list";
   std::filesystem::remove(file);
-  const std::string command =
-      std::string(HUBRT_OPERATOR_ENROL_PATH) + " add " + file.string() + " 'Cecilia Lind' 2>&1";
+  // The tool reads the badge from stdin, so it runs through popen rather than ChildProcess (whose
+  // stdin is /dev/null); in a cross build the target's emulator goes in front, as ChildProcess does.
+  std::string command;
+  for (const std::string& word : test_support::target_emulator()) command += word + " ";
+  command += std::string(HUBRT_OPERATOR_ENROL_PATH) + " add " + file.string() + " 'Cecilia Lind' 2>&1";
   FILE* enrol = ::popen(command.c_str(), "w");
   ASSERT_NE(enrol, nullptr);
   std::fputs("77001234\n", enrol);
