@@ -71,7 +71,7 @@ class HubctlServeTest : public ::testing::Test {
     state_reader_.emplace(std::move(*reader));
 
     HubProcessOptions options;
-    options.board = kOperatorDir + "/test/operator-sim.yaml";
+    options.board = kOperatorDir + "/../../boards/host-sim-operator-hub.yaml";
     options.hub = test_hub_file();
     auto hub = HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;

@@ -1,6 +1,8 @@
 // The whole simulated station as processes, in a test's own DDS domain on loopback: the Tool, RSP
 // and Dock ECUs (three hubd on the simulation board, in the layout asked for) and the station
-// model (hubsim); scenarios run against it with `hubctl play`.
+// model (hubsim); with `full`, also the MiR100's mir_com and the operator hub on their simulation
+// boards, the Tool ECU with the operator interlock (hubs/station/hub-files) and hubsim with the
+// mobile platform (hubs/station/full-station.yaml). Scenarios run against it with `hubctl play`.
 #pragma once
 
 #include <optional>
@@ -19,6 +21,7 @@ enum class StationLayout : std::uint8_t { kNodeType, kHub };
 
 struct StationOptions {
   StationLayout layout = StationLayout::kNodeType;
+  bool full = false;                     // the full station (above), for full-use-case.yaml
   std::vector<std::string> hubd_args;    // e.g. {"--rate", "20"}
   std::vector<std::string> hubsim_args;  // e.g. {"--travel-ms", "150"}
   double lift_speed_mm_s = 0;            // > 0: overrides the Tool ECU's lift speed
@@ -31,9 +34,10 @@ struct StationOptions {
 // the hub files it wrote. Not thread-safe.
 class StationProcesses {
  public:
-  // Writes the three hub files (the shipped ones, turned to the hub layout when asked: layout,
-  // and the subscriptions to the other hubs' States), starts the hubs and hubsim and waits until
-  // each says it runs. Errors carry the output of the process that did not start.
+  // Writes the hub files (the shipped ones, or the station's for the full station, turned to the
+  // hub layout when asked: layout, and the subscriptions to the other hubs' States), starts the
+  // hubs and hubsim and waits until each says it runs. Errors carry the output of the process
+  // that did not start.
   static Expected<StationProcesses> start(const test_support::TestDomain& domain,
                                           const StationOptions& options);
 

@@ -30,7 +30,7 @@ inline void expect_scenario_passes(const StationOptions& options, const std::str
   // Generous: every step has its own timeout in the scenario; this one only catches a hang, on a
   // loaded 2-core machine running sanitizer builds in parallel.
   const auto played = station->play(std::string(HUBRT_SOURCE_DIR) + "/hubs/station/scenarios/" + scenario,
-                                    std::chrono::seconds(150));
+                                    std::chrono::seconds(options.full ? 240 : 150));
   ASSERT_TRUE(played) << played.error().message << "\n" << station->logs();
   EXPECT_TRUE(played->status.exited_with(0)) << played->status.describe() << "\n"
                                              << played->output << "\n"

@@ -214,7 +214,7 @@ def run(args):
     procs = Processes(out_dir)
     driver = None
     try:
-        hub = procs.start("hubd", [hubd, "--board", os.path.join(operator_dir, "test/operator-sim.yaml"),
+        hub = procs.start("hubd", [hubd, "--board", os.path.join(operator_dir, "../../boards/host-sim-operator-hub.yaml"),
                                    "--hub", hub_file, *dds_args], env)
         procs.wait_for_log("hubd", "running hub", hub)
         procs.start("planner", [hubctl, "send", "/operator_panel/command", "target_type=operator_panel",

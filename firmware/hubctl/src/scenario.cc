@@ -11,8 +11,9 @@ namespace {
 
 using config::YamlMap;
 
-constexpr std::string_view kStepKinds[] = {"command", "wait",         "hold",  "station", "sim",
-                                           "fault",   "stop_sending", "sleep", "repeat",  "include"};
+constexpr std::string_view kStepKinds[] = {"command",      "wait",  "hold",        "station",
+                                           "sim",          "badge", "instruction", "fault",
+                                           "stop_sending", "sleep", "repeat",      "include"};
 constexpr int kMaxRepeat = 10'000;
 constexpr double kMaxSeconds = 24 * 3600.0;
 
@@ -165,6 +166,27 @@ Expected<void> parse_body(std::string_view kind, const YamlMap& body, const Cont
     step.target.hub = *hub;
     step.signal = *signal;
     step.active = *active;
+  } else if (kind == "badge") {
+    step.kind = StepKind::kBadge;
+    if (auto ok = body.only_keys({"hub", "reader", "text"}); !ok) return ok;
+    auto hub = text(body, "hub", iteration);
+    if (!hub) return std::move(hub).error();
+    auto reader = text(body, "reader", iteration);
+    if (!reader) return std::move(reader).error();
+    auto badge = text(body, "text", iteration);
+    if (!badge) return std::move(badge).error();
+    step.target.hub = *hub;
+    step.signal = *reader;
+    step.text = *badge;
+  } else if (kind == "instruction") {
+    step.kind = StepKind::kInstruction;
+    if (auto ok = body.only_keys({"step", "text"}); !ok) return ok;
+    auto name = text(body, "step", iteration);
+    if (!name) return std::move(name).error();
+    auto what = text(body, "text", iteration);
+    if (!what) return std::move(what).error();
+    step.signal = *name;
+    step.text = *what;
   } else if (kind == "fault") {
     step.kind = StepKind::kFault;
     if (auto ok = body.only_keys({"hub", "device", "fault", "value"}); !ok) return ok;
@@ -298,6 +320,11 @@ std::string Step::describe() const {
       return fmt::format("station: {}{}", action, fields_text(fields));
     case StepKind::kSimInput:
       return fmt::format("sim {}: {} -> {}", target.hub, signal, active);
+    case StepKind::kBadge:
+      // The badge itself stays out of reports and logs, as the operator hub keeps it out of its State.
+      return fmt::format("badge {}: a badge at {}", target.hub, signal);
+    case StepKind::kInstruction:
+      return fmt::format("instruction {}: {}", signal, text);
     case StepKind::kFault:
       return fmt::format("fault {}: {} {}{}", target.hub, device, fault,
                          value != 0 ? fmt::format(" ({})", value) : std::string());

@@ -11,6 +11,8 @@
 //     - hold: {hub: rsp_ecu, node: rsp, while: "lock == closed", for: 1.0}
 //     - station: {action: move_robot, location: kit}       # other keys: StationCommand fields
 //     - sim: {hub: rsp_ecu, signal: main_air, active: false}
+//     - badge: {hub: operator_hub, reader: operator_rfid, text: "0004123456"}   # /sim/badge
+//     - instruction: {step: bolts, text: "Place the 24 bolts"}   # /operator/instruction, the screen
 //     - fault: {hub: tool_ecu, device: tool_bus, fault: power_off}        # value: optional
 //     - stop_sending: {hub: tool_ecu}                      # or {hub, node}
 //     - sleep: 0.5
@@ -38,6 +40,8 @@ enum class StepKind : std::uint8_t {
   kHold,
   kStation,
   kSimInput,
+  kBadge,
+  kInstruction,
   kFault,
   kStopSending,
   kSleep
@@ -65,7 +69,8 @@ struct Step {
   std::vector<Predicate> conditions;  // wait (until), hold (while): all must hold
   Duration timeout{};                 // wait
   Duration duration{};                // hold (for), sleep
-  std::string signal;                 // sim
+  std::string signal;                 // sim; badge: the reader; instruction: the step's name
+  std::string text;                   // badge: what the reader sends; instruction: what to do
   bool active = false;                // sim
   std::string device, fault;          // fault
   std::uint32_t value = 0;            // fault

@@ -124,6 +124,10 @@ StepResult StepExecutor::execute(const Step& step) {
       return station(step);
     case StepKind::kSimInput:
       return sim_input(step);
+    case StepKind::kBadge:
+      return badge(step);
+    case StepKind::kInstruction:
+      return instruction(step);
     case StepKind::kFault:
       return fault(step);
     case StepKind::kStopSending:
@@ -246,6 +250,27 @@ StepResult StepExecutor::sim_input(const Step& step) {
             {{"hub", step.target.hub}, {"signal", step.signal}, {"active", step.active ? "true" : "false"}});
   if (!document) return failed(document.error().message);
   return to_hub(std::string(kSimInputTopic), step.target.hub, **type, *document);
+}
+
+StepResult StepExecutor::badge(const Step& step) {
+  auto type = ScenarioTraffic::known_type("hub_msgs/msg/SimBadge");
+  if (!type) return failed(type.error().message);
+  auto document = build(**type, {{"hub", step.target.hub}, {"reader", step.signal}, {"text", step.text}});
+  if (!document) return failed(document.error().message);
+  return to_hub(std::string(kSimBadgeTopic), step.target.hub, **type, *document);
+}
+
+// To the operator screens matched by now, without waiting for one: a station may run without a
+// screen, and a screen opened later shows the next instruction.
+StepResult StepExecutor::instruction(const Step& step) {
+  auto type = ScenarioTraffic::known_type("hub_msgs/msg/OperatorInstruction");
+  if (!type) return failed(type.error().message);
+  auto document = build(
+      **type, {{"step", step.signal}, {"text", step.text}, {"seq", std::to_string(++instruction_seq_)}});
+  if (!document) return failed(document.error().message);
+  auto w = traffic_.writer(std::string(kInstructionTopic), **type, 0);
+  if (!w) return failed(w.error().message);
+  return write_once(**w, **type, *document);
 }
 
 StepResult StepExecutor::fault(const Step& step) {

@@ -3,6 +3,8 @@
 // once. Over the DDS side in scenario_traffic.h; the run and its report are scenario_runner.h's.
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -43,11 +45,18 @@ class StepExecutor {
   StepResult hold(const Step& step);
   StepResult station(const Step& step);
   StepResult sim_input(const Step& step);
+  StepResult badge(const Step& step);
+  StepResult instruction(const Step& step);
   StepResult fault(const Step& step);
   StepResult to_hub(const std::string& topic, const std::string& hub, const msgs::TypeInfo& type,
                     const nlohmann::ordered_json& document);
 
   ScenarioTraffic& traffic_;
+  // Each instruction a new number, also across runs of hubctl (a screen takes a repeated number
+  // for the same instruction): counted on from the time this hubctl started.
+  std::uint32_t instruction_seq_ = static_cast<std::uint32_t>(
+      std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count());
 };
 
 }  // namespace hubrt::hubctl

@@ -36,6 +36,8 @@ using SteadyClock = std::chrono::steady_clock;
 inline constexpr std::string_view kStationStateTopic = "/sim/station/state";
 inline constexpr std::string_view kStationCommandTopic = "/sim/station/command";
 inline constexpr std::string_view kSimInputTopic = "/sim/input";
+inline constexpr std::string_view kSimBadgeTopic = "/sim/badge";
+inline constexpr std::string_view kInstructionTopic = "/operator/instruction";
 inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 // How often the loop looks for samples and due commands while a step runs.
 inline constexpr auto kPoll = std::chrono::milliseconds(5);

@@ -34,11 +34,13 @@ steps:
   - stop_sending: {hub: tool_ecu}
   - name: settle
     sleep: 0.25
+  - badge: {hub: operator_hub, reader: operator_rfid, text: "0004123456"}
+  - instruction: {step: bolts, text: "Place the bolts"}
 )");
   ASSERT_TRUE(scenario) << scenario.error().message;
   EXPECT_EQ(scenario->description, "all of them");
   EXPECT_DOUBLE_EQ(scenario->rate_hz, 20.0);
-  ASSERT_EQ(scenario->steps.size(), 9u);
+  ASSERT_EQ(scenario->steps.size(), 11u);
   const auto& s = scenario->steps;
   EXPECT_EQ(s[0].kind, StepKind::kCommand);
   EXPECT_EQ(s[0].where, "play.yaml:5");
@@ -67,6 +69,14 @@ steps:
   EXPECT_EQ(s[7].target.node, "");
   EXPECT_EQ(s[8].kind, StepKind::kSleep);
   EXPECT_EQ(s[8].describe(), "settle");
+  EXPECT_EQ(s[9].kind, StepKind::kBadge);
+  EXPECT_EQ(s[9].target.hub, "operator_hub");
+  EXPECT_EQ(s[9].signal, "operator_rfid");
+  EXPECT_EQ(s[9].text, "0004123456");
+  EXPECT_EQ(s[9].describe(), "badge operator_hub: a badge at operator_rfid")
+      << "the badge stays out of reports";
+  EXPECT_EQ(s[10].kind, StepKind::kInstruction);
+  EXPECT_EQ(s[10].describe(), "instruction bolts: Place the bolts");
 }
 
 TEST(Scenario, RepeatsExpandWithTheirCount) {

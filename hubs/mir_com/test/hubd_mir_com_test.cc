@@ -1,4 +1,4 @@
-// The real hubd on the fake backend with the hub's test board (test/mir-sim.yaml: the MiR100
+// The real hubd on the fake backend with the hub's test board (boards/host-sim-mir-com.yaml: the MiR100
 // simulator's REST server on loopback, reached through the real cpp-httplib client), commanded
 // over Cyclone DDS on loopback in the test's own domain (TestDomain) like a planner: the platform
 // paused before any command, a move through the mission queue, the watchdog pausing a move and
@@ -60,7 +60,7 @@ class HubdMirComTest : public ::testing::Test {
     fault_writer_.emplace(*dds::Writer<hub_msgs_msg_dds__SimFault_>::create(*participant_, *fault_topic_));
 
     integration::HubProcessOptions options;
-    options.board = std::string(HUBRT_MIR_COM_DIR) + "/test/mir-sim.yaml";
+    options.board = std::string(HUBRT_MIR_COM_DIR) + "/../../boards/host-sim-mir-com.yaml";
     options.hub = "mir_com";
     auto hub = integration::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;

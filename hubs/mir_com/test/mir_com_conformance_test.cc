@@ -1,5 +1,5 @@
 // mir_com passes the heartbeat conformance suite in both layouts, with its profile
-// (conformance.yaml): hubd on the fake backend with test/mir-sim.yaml (the MiR100 simulator on
+// (conformance.yaml): hubd on the fake backend with boards/host-sim-mir-com.yaml (the MiR100 simulator on
 // loopback) in this test's own DDS domain, `hubctl conformance` testing it from the wire — among
 // its checks the safe state: the platform held paused once the watchdog tripped.
 #include <string>
@@ -19,7 +19,7 @@ TEST_P(MirComConformanceTest, PassesEveryCheck) {
   const std::string dir = HUBRT_MIR_COM_DIR;
   integration::expect_hub_conforms({.hub_dir = dir,
                                     .hub_name = "mir_com",
-                                    .board = dir + "/test/mir-sim.yaml",
+                                    .board = dir + "/../../boards/host-sim-mir-com.yaml",
                                     .layout = layout,
                                     .hub_file_edits = {},
                                     .state_topics = layout == "hub" ? 1 : 2,

@@ -1,4 +1,4 @@
-// The real hubd on the fake backend with the hub's test board (test/operator-sim.yaml) and the
+// The real hubd on the fake backend with the hub's test board (boards/host-sim-operator-hub.yaml) and the
 // test allow-list, in the test's own DDS domain on loopback, commanded like a planner: a badge
 // shown through /sim/badge verifies its operator, an unknown one is rejected, the button (through
 // /sim/input) and the screen's confirm topic increment the press sequence, the watchdog logs the
@@ -81,7 +81,7 @@ class HubdOperatorTest : public ::testing::Test {
     state_reader_.emplace(std::move(*reader));
 
     integration::HubProcessOptions options;
-    options.board = kDir + "/test/operator-sim.yaml";
+    options.board = kDir + "/../../boards/host-sim-operator-hub.yaml";
     options.hub = test_hub_file("node_type");
     auto hub = integration::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
@@ -249,7 +249,7 @@ TEST(OperatorBoardTest, CheckReportsAnAllowListMistakeWithItsLine) {
   std::ofstream(dir / "operator_hub.yaml") << text;
   auto finished = integration::run_hubd(
       *domain,
-      {"--board", kDir + "/test/operator-sim.yaml", "--hub", (dir / "operator_hub.yaml").string(), "--check"},
+      {"--board", kDir + "/../../boards/host-sim-operator-hub.yaml", "--hub", (dir / "operator_hub.yaml").string(), "--check"},
       seconds(60));
   ASSERT_TRUE(finished) << finished.error().message;
   EXPECT_FALSE(finished->status.exited_with(0)) << finished->output;

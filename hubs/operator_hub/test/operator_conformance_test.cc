@@ -1,5 +1,5 @@
 // The operator hub passes the heartbeat conformance suite in both layouts, with its profile
-// (conformance.yaml): hubd on the fake backend with test/operator-sim.yaml in this test's own DDS
+// (conformance.yaml): hubd on the fake backend with boards/host-sim-operator-hub.yaml in this test's own DDS
 // domain, `hubctl conformance` testing it from the wire. The hub file's copy lives in a temporary
 // folder, so its allow-list is named by its absolute path.
 #include <string>
@@ -20,7 +20,7 @@ TEST_P(OperatorConformanceTest, PassesEveryCheck) {
   integration::expect_hub_conforms(
       {.hub_dir = dir,
        .hub_name = "operator_hub",
-       .board = dir + "/test/operator-sim.yaml",
+       .board = dir + "/../../boards/host-sim-operator-hub.yaml",
        .layout = layout,
        .hub_file_edits = {{"allow_list: operators.list", "allow_list: " + dir + "/test/operators.list"}},
        .state_topics = 1,

@@ -1,5 +1,5 @@
 // The operator panel's logic under a manual clock on the fake backend, with the hub's test board
-// (test/operator-sim.yaml), default configuration and test allow-list: safe without a command,
+// (boards/host-sim-operator-hub.yaml), default configuration and test allow-list: safe without a command,
 // verification by badge, rejections with their reason, confirm presses with their sequence number
 // (button and screen), logout and reset, a reader unplugged and back, no badge in clear, and a
 // cycle that allocates nothing.
@@ -38,7 +38,7 @@ hub_msgs::OperatorPanelCommand command(std::string_view action) {
 class OperatorLogicTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto board = hal::load_board(kDir + "/test/operator-sim.yaml");
+    auto board = hal::load_board(kDir + "/../../boards/host-sim-operator-hub.yaml");
     ASSERT_TRUE(board) << board.error().message;
     board_ = std::move(*board);
     auto fake = hal::fake::FakeBackend::create(board_, clock_);

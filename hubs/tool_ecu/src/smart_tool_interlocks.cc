@@ -30,7 +30,9 @@ bool SmartToolLogic::fault_blocks() noexcept {
 
 bool SmartToolLogic::planner_blocked(bool forward, int program) noexcept {
   if (fault_blocks()) return true;
-  if (program >= 0 && program_rejected_[static_cast<std::size_t>(program)]) {
+  if (operator_ && !operator_reading_.verified) {
+    blocked_by_.format("no verified operator: {}", operator_reading_.detail);
+  } else if (program >= 0 && program_rejected_[static_cast<std::size_t>(program)]) {
     blocked_by_.format("program '{}' was rejected by the controller (latched: send reset)",
                        settings_.programs[static_cast<std::size_t>(program)].name);
   } else if (!holder_reading_.known) {

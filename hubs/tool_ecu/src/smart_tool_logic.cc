@@ -82,6 +82,7 @@ void SmartToolLogic::read_inputs(Time now) noexcept {
   inputs_known_ = !forward_unreadable && !reverse_unreadable && !torque_unreadable_ && !alarm_unreadable_;
   arm_ = arm_sensors_.read(now);
   holder_reading_ = holder_->read(now);
+  if (operator_) operator_reading_ = operator_->read(now);
   observe_faults(now);
 
   // The controller reports the program it has selected; one that differs from what it last

@@ -25,6 +25,7 @@
 
 #include "arm_position.h"
 #include "latched_fault.h"
+#include "operator_presence.h"
 #include "robot_holder.h"
 #include "run_lines.h"
 #include "tool_controller.h"
@@ -65,6 +66,13 @@ class SmartToolLogic {
   static Expected<SmartToolLogic> create(const SmartToolSettings& settings, SmartToolDevices devices,
                                          std::unique_ptr<ToolHolderView> holder, Time now,
                                          std::shared_ptr<spdlog::logger> log = nullptr);
+
+  // The collaborative interlock (settings' operator_state): from now on a planner's tighten or
+  // reverse runs only while `presence` says an operator is verified. The manual buttons are the
+  // operator's own hands on the tool and need no badge.
+  void require_operator(std::unique_ptr<OperatorPresenceView> presence) noexcept {
+    operator_ = std::move(presence);
+  }
 
   SmartToolLogic(SmartToolLogic&&) noexcept = default;
   SmartToolLogic& operator=(SmartToolLogic&&) noexcept = default;
@@ -165,12 +173,14 @@ class SmartToolLogic {
   ArmSensors arm_sensors_;
   ToolController controller_;
   std::unique_ptr<ToolHolderView> holder_;
+  std::unique_ptr<OperatorPresenceView> operator_;  // null: no operator interlock
   std::shared_ptr<spdlog::logger> log_;
   Inputs inputs_;
 
   // Inputs of this cycle.
   ArmPosition arm_ = ArmPosition::kUnknown;
   HolderReading holder_reading_;
+  OperatorReading operator_reading_;
   bool pressed_forward_ = false;
   bool pressed_reverse_ = false;
   bool torque_input_ = false;

@@ -82,6 +82,17 @@ class ToolEcuHubType final : public hub_api::HubType {
               "500}}}})",
               node.name, settings->robot_state, config.file, settings->robot_state));
         }
+        if (!settings->operator_state.empty() &&
+            std::none_of(config.subscriptions.begin(), config.subscriptions.end(),
+                         [&](const config::Subscription& s) { return s.name == settings->operator_state; })) {
+          return node.settings.error_at(
+              "operator_state",
+              fmt::format(
+                  "node '{}' takes the operator hub's State from subscription '{}', and {} has no such "
+                  "subscription (add subscriptions: {{{}: {{topic: /operator_hub/panel/state, type: "
+                  "hub_msgs/msg/OperatorPanelState, timeout_ms: 500}}}})",
+                  node.name, settings->operator_state, config.file, settings->operator_state));
+        }
         add_requirements(*settings, required);
       } else if (node.type == LiftLogic::kType) {
         auto settings = parse_lift_settings(node);
@@ -104,6 +115,11 @@ class ToolEcuHubType final : public hub_api::HubType {
         if (!settings) return std::move(settings).error();
         auto rsp = hub_api::Subscriptions::check<hub_msgs::RspStateView>(config, settings->robot_state);
         if (!rsp) return in_node(node, rsp.error());
+        if (!settings->operator_state.empty()) {
+          auto panel = hub_api::Subscriptions::check<hub_msgs::OperatorPanelStateView>(
+              config, settings->operator_state);
+          if (!panel) return in_node(node, panel.error());
+        }
         wired = hub_api::NodeWiring<ToolEcuTypes>::check<SmartToolLogic>(config, node);
       } else {
         wired = hub_api::NodeWiring<ToolEcuTypes>::check<LiftLogic>(config, node);
@@ -141,6 +157,11 @@ class ToolEcuHubType final : public hub_api::HubType {
     auto logic = SmartToolLogic::create(*settings, std::move(*devices),
                                         std::make_unique<RspToolHolder>(**rsp), now, context.log);
     if (!logic) return in_node(node, logic.error());
+    if (!settings->operator_state.empty()) {
+      auto panel = context.subscriptions.get<hub_msgs::OperatorPanelStateView>(settings->operator_state);
+      if (!panel) return in_node(node, panel.error());
+      logic->require_operator(std::make_unique<OperatorPanelPresence>(**panel));
+    }
     return wiring.add(node, std::move(*logic));
   }
 

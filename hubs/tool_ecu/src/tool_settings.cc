@@ -87,8 +87,8 @@ Expected<void> parse_signals(const config::YamlMap& node, SmartToolSettings& s) 
 
 Expected<SmartToolSettings> parse_smart_tool_settings(const config::NodeConfig& node) {
   const config::YamlMap& map = node.settings;
-  if (auto ok = map.only_keys({"type", "bus", "node_id", "signals", "robot_state", "programs",
-                               "manual_program", "start_timeout_ms", "resend_ms"});
+  if (auto ok = map.only_keys({"type", "bus", "node_id", "signals", "robot_state", "operator_state",
+                               "programs", "manual_program", "start_timeout_ms", "resend_ms"});
       !ok) {
     return std::move(ok).error();
   }
@@ -104,6 +104,9 @@ Expected<SmartToolSettings> parse_smart_tool_settings(const config::NodeConfig& 
   auto robot = map.string_or("robot_state", s.robot_state);
   if (!robot) return std::move(robot).error();
   s.robot_state = std::move(*robot);
+  auto operator_state = map.string_or("operator_state", "");
+  if (!operator_state) return std::move(operator_state).error();
+  s.operator_state = std::move(*operator_state);
 
   auto programs = map.named_maps("programs");
   if (!programs) return std::move(programs).error();

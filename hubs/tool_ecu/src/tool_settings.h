@@ -38,7 +38,10 @@ struct SmartToolSettings {
   std::string torque_reached = "tool.torque_reached";
   std::string summary_alarm = "tool.summary_alarm";
   ArmSignals arm;
-  std::string robot_state = "rsp";    // the hub file's subscription giving the RSP ECU's RspState
+  std::string robot_state = "rsp";  // the hub file's subscription giving the RSP ECU's RspState
+  // The hub file's subscription giving the operator hub's OperatorPanelState; empty: no operator
+  // interlock (a cell without an operator hub). Set: tighten only while an operator is verified.
+  std::string operator_state;
   std::vector<ToolProgram> programs;  // 1..kMaxPrograms, names and numbers unique
   int manual_program = -1;            // index into programs for the handle's forward button; -1: none
   // A Start the controller has not confirmed (status: running, run counter + 1) within this is

@@ -36,6 +36,41 @@ TEST(ToolEcuHubType, NeedsTheRspSubscriptionForTheSmartToolInterlock) {
             "hub_msgs/msg/RspState, timeout_ms: 500}})");
 }
 
+TEST(ToolEcuHubType, TheOperatorInterlockNeedsItsSubscriptionAndItsType) {
+  const std::string tool = std::string(kTool) + "    operator_state: operator\n";
+  auto missing = requirements_of(std::string("hub: tool_ecu\n") + kRsp + "nodes:\n" + tool);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().message.rfind("tool.yaml:8:21: nodes.tool.operator_state: node 'tool' takes the "
+                                          "operator hub's State from subscription 'operator', and tool.yaml "
+                                          "has no such subscription",
+                                          0),
+            0U)
+      << missing.error().message;
+
+  const std::string with_operator =
+      std::string("hub: tool_ecu\n") + kRsp +
+      "  operator: {topic: /operator_hub/panel/state, type: hub_msgs/msg/OperatorPanelState, timeout_ms: "
+      "500}\nnodes:\n" +
+      tool;
+  ASSERT_TRUE(requirements_of(with_operator));
+  auto root = config::YamlMap::load_string(with_operator, "tool.yaml");
+  ASSERT_TRUE(root);
+  auto config = config::parse_hub_config(*root);
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_TRUE(tool_ecu_hub_type().check(*config));
+
+  // A subscription of another type cannot feed it: said before anything opens.
+  std::string wrong_type = with_operator;
+  wrong_type.replace(wrong_type.find("OperatorPanelState"), 18, "DockState");
+  auto wrong_root = config::YamlMap::load_string(wrong_type, "tool.yaml");
+  ASSERT_TRUE(wrong_root);
+  auto wrong = config::parse_hub_config(*wrong_root);
+  ASSERT_TRUE(wrong) << wrong.error().message;
+  auto refused = tool_ecu_hub_type().check(*wrong);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("operator"), std::string::npos) << refused.error().message;
+}
+
 TEST(ToolEcuHubType, KnowsItsNodeTypesOnly) {
   auto wrong = requirements_of("hub: tool_ecu\nnodes:\n  dock:\n    type: dock\n");
   ASSERT_FALSE(wrong);
