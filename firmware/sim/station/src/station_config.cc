@@ -239,6 +239,12 @@ Expected<void> mobile_platform(const YamlMap& root, StationConfig& out) {
     return map->error_at(
         "kit", fmt::format("'{}' is not one of the robot's places ({})", *kit, fmt::join(out.places, ", ")));
   }
+  if (!contains(out.frame_rests, *kit)) {
+    return map->error_at("kit",
+                         fmt::format("the ladder frame cannot lie at '{}' (ladder_frame.rests: {}): the kit "
+                                     "brings it",
+                                     *kit, fmt::join(out.frame_rests, ", ")));
+  }
   if (*kit == out.robot_start) {
     return map->error_at("kit", fmt::format("the robot starts at '{}', where the kit may not be", *kit));
   }

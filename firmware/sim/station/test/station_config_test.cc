@@ -134,7 +134,12 @@ TEST(StationConfig, MistakesNameFileLineAndWhatIsWrong) {
        "MirComState has no RobotMoverState field 'poses'"},
       {"mobile_platform: {state: /m/state, at_station: s, kit: roof}\n" + std::string(kTools),
        "'roof' is not one of the robot's places"},
-      {"mobile_platform: {state: /m/state, at_station: s, kit: home}\n" + std::string(kTools),
+      {"ladder_frame: {rests: [engine], start: engine}\nmobile_platform: {state: /m/state, at_station: s}\n" +
+           std::string(kTools),
+       "the ladder frame cannot lie at 'kit'"},
+      {"ladder_frame: {rests: [kit, engine, home]}\nmobile_platform: {state: /m/state, at_station: s, kit: "
+       "home}\n" +
+           std::string(kTools),
        "the robot starts at 'home'"},
       {"mobile_platform: {state: /m/state, at_station: s, timeout_ms: 0}\n" + std::string(kTools),
        "timeout_ms"},
