@@ -3,6 +3,9 @@
 //
 //   hubsim --loopback                                  station of hubs/station/station.yaml
 //   hubsim --station my-station.yaml --rsp-ecu rsp2    another description, another RSP instance
+//   hubsim --loopback --station hubs/station/full-station.yaml
+//                                                      the full station: a mobile platform (the
+//                                                      mir_com hub's MiR) brings the kit
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
@@ -146,7 +149,9 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
   hubrt::sim::station::Options options;
   CLI::App app{"hubsim — the simulated station's world: couples the simulated Tool, RSP and Dock ECUs"};
-  app.add_option("--station", options.station, "Station description (default: hubs/station/station.yaml)");
+  app.add_option("--station", options.station,
+                 "Station description (default: hubs/station/station.yaml; hubs/station/full-station.yaml "
+                 "adds the mobile platform that brings the kit)");
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
   app.add_option("--dds-config", options.dds_config,

@@ -8,6 +8,7 @@
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/reflected_message_ops.h"
 
+#include "platform_reader.h"
 #include "station_reflect.h"
 
 namespace hubrt::sim::station {
@@ -48,15 +49,27 @@ Expected<std::unique_ptr<StationBridge>> StationBridge::create(const dds::Partic
   if (!input_topic) return std::move(input_topic).error();
   auto input_writer = dds::Writer<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic);
   if (!input_writer) return std::move(input_writer).error();
-  Entities entities{std::move(hubs),         std::move(*command_topic), std::move(*command_reader),
-                    std::move(*state_topic), std::move(*state_writer),  std::move(*input_topic),
-                    std::move(*input_writer)};
+  std::unique_ptr<PlatformReader> platform;
+  if (model.config().mobile_platform) {
+    auto reader = PlatformReader::create(participant, *model.config().mobile_platform);
+    if (!reader) return std::move(reader).error();
+    platform = std::move(*reader);
+  }
+  Entities entities{std::move(hubs),          std::move(*command_topic), std::move(*command_reader),
+                    std::move(*state_topic),  std::move(*state_writer),  std::move(*input_topic),
+                    std::move(*input_writer), std::move(platform)};
   return std::unique_ptr<StationBridge>(new StationBridge(std::move(entities), model, std::move(log)));
 }
+
+StationBridge::StationBridge(Entities entities, StationModel& model, std::shared_ptr<spdlog::logger> log)
+    : dds_(std::move(entities)), model_(model), log_(std::move(log)) {}
+
+StationBridge::~StationBridge() = default;
 
 void StationBridge::step(const Instant& now) {
   model_.advance(now.mono);
   take_signals(now.mono);
+  take_platform(now.mono);
   take_commands(now.mono);
   reconcile(now.mono);
   publish(now);
@@ -92,6 +105,17 @@ void StationBridge::take_signals(Time now) {
         if (lift.device != nullptr) model_.observe_lift(lift.device, lift.position_mm);
       }
     }
+  }
+}
+
+void StationBridge::take_platform(Time now) {
+  if (!dds_.platform) return;
+  if (const auto report = dds_.platform->take()) model_.observe_platform(*report, now);
+  // Also when the platform's State was lost (advance() in step() made the kit unknown).
+  if (model_.kit() != logged_kit_) {
+    log_->info("station: the kit is {} (mobile platform on {})", to_string(model_.kit()),
+               model_.config().mobile_platform->state_topic);
+    logged_kit_ = model_.kit();
   }
 }
 
@@ -244,6 +268,7 @@ void StationBridge::publish(const Instant& now) {
   state.tools._length = static_cast<std::uint32_t>(tools.size());
   state.tools._maximum = state.tools._length;
   state.ladder_frame = wire(model_.ladder_frame());
+  state.kit = const_cast<char*>(to_string(model_.kit()).data());  // NOLINT: static text
   state.gripper = wire(gripper);
   state.smart_tool_arm = const_cast<char*>(to_string(model_.arm()).data());  // NOLINT: static text
   state.lift_mm =

@@ -1,12 +1,14 @@
 #include "hubrt/sim/station/station_config.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "hubrt/config/hub_config.h"
+#include "hubrt/dds/ros_names.h"
 
 namespace hubrt::sim::station {
 namespace {
@@ -195,6 +197,65 @@ Expected<void> smart_tool_arm(const YamlMap& root, StationConfig& out) {
   return {};
 }
 
+// RobotMoverState's actual_pose is a string<64> (hubs/mir_com/msg/robot_mover.idl): a longer
+// position could never be reported.
+constexpr std::size_t kMaxPoseBytes = 64;
+// MirComState's fields that hold a RobotMoverState (hubs/mir_com/msg/mir_com.idl).
+constexpr std::array<std::string_view, 1> kMoverFields{"mover"};
+
+Expected<void> mobile_platform(const YamlMap& root, StationConfig& out) {
+  if (!root.has("mobile_platform")) return {};
+  auto map = root.map("mobile_platform");
+  if (!map) return std::move(map).error();
+  if (auto ok = map->only_keys({"state", "field", "at_station", "kit", "timeout_ms"}); !ok) return ok;
+  MobilePlatformConfig platform;
+  auto state = map->string("state");
+  if (!state) return std::move(state).error();
+  if (auto valid = dds::validate_ros_topic_name(*state); !valid) {
+    return map->error_at("state", valid.error().message);
+  }
+  platform.state_topic = *state;
+  if (map->has("field")) {
+    auto field = identifier(*map, "field", "");
+    if (!field) return std::move(field).error();
+    if (std::find(kMoverFields.begin(), kMoverFields.end(), *field) == kMoverFields.end()) {
+      return map->error_at("field", fmt::format("MirComState has no RobotMoverState field '{}' (it has: {})",
+                                                *field, fmt::join(kMoverFields, ", ")));
+    }
+    platform.field = *field;
+  }
+  auto at_station = map->string("at_station");
+  if (!at_station) return std::move(at_station).error();
+  if (at_station->size() > kMaxPoseBytes) {  // (YamlMap refuses an empty one)
+    return map->error_at("at_station",
+                         fmt::format("the platform's position at the station must be at most {} "
+                                     "bytes (RobotMoverState's actual_pose)",
+                                     kMaxPoseBytes));
+  }
+  platform.at_station = *at_station;
+  auto kit = map->string_or("kit", platform.kit);
+  if (!kit) return std::move(kit).error();
+  if (!contains(out.places, *kit)) {
+    return map->error_at(
+        "kit", fmt::format("'{}' is not one of the robot's places ({})", *kit, fmt::join(out.places, ", ")));
+  }
+  if (!contains(out.frame_rests, *kit)) {
+    return map->error_at("kit",
+                         fmt::format("the ladder frame cannot lie at '{}' (ladder_frame.rests: {}): the kit "
+                                     "brings it",
+                                     *kit, fmt::join(out.frame_rests, ", ")));
+  }
+  if (*kit == out.robot_start) {
+    return map->error_at("kit", fmt::format("the robot starts at '{}', where the kit may not be", *kit));
+  }
+  platform.kit = *kit;
+  auto timeout = map->integer_or("timeout_ms", 1000, 10, 600'000);
+  if (!timeout) return std::move(timeout).error();
+  platform.timeout = std::chrono::milliseconds(*timeout);
+  out.mobile_platform = std::move(platform);
+  return {};
+}
+
 }  // namespace
 
 std::string_view to_string(HubRole role) noexcept {
@@ -222,7 +283,7 @@ bool StationConfig::is_location(std::string_view name) const noexcept {
 
 Expected<StationConfig> parse_station_config(const YamlMap& root) {
   if (auto ok = root.only_keys({"hubs", "rate_hz", "resend_holdoff_ms", "robot", "changer", "tools",
-                                "ladder_frame", "smart_tool_arm"});
+                                "ladder_frame", "smart_tool_arm", "mobile_platform"});
       !ok) {
     return std::move(ok).error();
   }
@@ -251,6 +312,7 @@ Expected<StationConfig> parse_station_config(const YamlMap& root) {
         "tools", fmt::format("no tool '{}' to hold the ladder frame (ladder_frame.tool)", out.frame_tool));
   }
   if (auto ok = smart_tool_arm(root, out); !ok) return std::move(ok).error();
+  if (auto ok = mobile_platform(root, out); !ok) return std::move(ok).error();
   if (out.find_tool(out.arm_tool) == nullptr) {
     return root.error_at("tools",
                          fmt::format("no tool '{}' with arm sensors (smart_tool_arm.tool)", out.arm_tool));

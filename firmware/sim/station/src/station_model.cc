@@ -32,8 +32,31 @@ std::string_view to_string(ArmReading reading) noexcept {
   return "?";
 }
 
+std::string_view to_string(KitPlace place) noexcept {
+  switch (place) {
+    case KitPlace::kAtStation:
+      return "at_station";
+    case KitPlace::kAway:
+      return "away";
+    case KitPlace::kUnknown:
+      return "unknown";
+  }
+  return "?";
+}
+
 StationModel::StationModel(StationConfig config) : config_(std::move(config)) {
+  // With a platform, nobody has said yet that it brought the kit.
+  if (config_.mobile_platform) kit_ = KitPlace::kUnknown;
   start_over();
+}
+
+std::string_view StationModel::kit_place() const noexcept {
+  return config_.mobile_platform ? std::string_view(config_.mobile_platform->kit) : std::string_view();
+}
+
+std::string StationModel::fresh_frame_place() const {
+  if (!kit_here() && config_.frame_start == kit_place()) return std::string(kAway);
+  return config_.frame_start;
 }
 
 void StationModel::start_over() {
@@ -47,7 +70,7 @@ void StationModel::start_over() {
   }
   robot_at_ = config_.robot_start;
   moving_to_.clear();
-  frame_at_ = config_.frame_start;
+  frame_at_ = fresh_frame_place();  // the kit stays where the platform is
   faults_.clear();
 }
 
@@ -64,6 +87,36 @@ const ToolConfig* StationModel::on_robot() const noexcept {
 
 void StationModel::advance(Time now) {
   if (!moving_to_.empty() && now >= arrives_at_) arrive();
+  if (config_.mobile_platform && platform_heard_ &&
+      now - *platform_heard_ > config_.mobile_platform->timeout) {
+    platform_heard_.reset();
+    kit_becomes(KitPlace::kUnknown);
+  }
+}
+
+void StationModel::observe_platform(const PlatformReport& report, Time now) {
+  if (!config_.mobile_platform) return;
+  advance(now);
+  platform_heard_ = now;
+  const bool at_station = !report.moving && report.pose == config_.mobile_platform->at_station;
+  kit_becomes(at_station ? KitPlace::kAtStation : KitPlace::kAway);
+}
+
+void StationModel::kit_becomes(KitPlace place) {
+  const bool was_here = kit_here();
+  kit_ = place;
+  const std::string_view kit = kit_place();
+  if (!was_here && kit_here()) {
+    // A new kit with a new ladder frame on it (as restock: the frame shown is the new one),
+    // unless the robot holds the frame.
+    if (frame_at_ != kGripper) frame_at_ = kit;
+    return;
+  }
+  if (!was_here || kit_here()) return;
+  if (frame_at_ == kit) frame_at_ = kAway;  // it leaves with the kit
+  if (moving_to_.empty() && robot_at_ == kit) {
+    faults_.emplace_back("collision: the mobile platform left while the robot was at the kit");
+  }
 }
 
 void StationModel::arrive() {
@@ -86,6 +139,10 @@ Expected<void> StationModel::command(std::string_view action, std::string_view l
       return make_error(ErrorCode::kInvalidArgument,
                         fmt::format("unknown location '{}' (the robot can go to: {})", location, known));
     }
+    if (!kit_here() && location == kit_place()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        "no kit at the station: the mobile platform is not there");
+    }
     if ((moving_to_.empty() && robot_at_ == location) || moving_to_ == location) return {};
     robot_at_.clear();
     moving_to_ = location;
@@ -98,7 +155,7 @@ Expected<void> StationModel::command(std::string_view action, std::string_view l
       return make_error(ErrorCode::kInvalidArgument,
                         "cannot restock: the robot holds the ladder frame (put it down first)");
     }
-    frame_at_ = config_.frame_start;
+    frame_at_ = fresh_frame_place();
     return {};
   }
   if (action == "reset") {
@@ -169,7 +226,8 @@ void StationModel::gripper_changed(bool closed) {
   }
   if (frame_at_ != kGripper) return;
   const auto& rests = config_.frame_rests;
-  if (standing && std::find(rests.begin(), rests.end(), robot_at_) != rests.end()) {
+  const bool can_lie = robot_at_ != kit_place() || kit_here();  // no kit, nothing to lie on
+  if (standing && can_lie && std::find(rests.begin(), rests.end(), robot_at_) != rests.end()) {
     frame_at_ = robot_at_;
     return;
   }

@@ -33,6 +33,59 @@ TEST(StationConfig, TheShippedStationLoads) {
   EXPECT_FALSE(config->is_location("canteen"));
 }
 
+TEST(StationConfig, TheShippedStationHasNoMobilePlatformAndTheFullStationHasOne) {
+  auto station = load_station_config(HUBRT_STATION_FILE);
+  ASSERT_TRUE(station) << station.error().message;
+  EXPECT_FALSE(station->mobile_platform) << "the three-hub station has no mir_com: the kit must stay";
+  auto full = load_station_config(HUBRT_FULL_STATION_FILE);
+  ASSERT_TRUE(full) << full.error().message;
+  ASSERT_TRUE(full->mobile_platform);
+  EXPECT_EQ(full->mobile_platform->state_topic, "/mir_com/mover/state");
+  EXPECT_EQ(full->mobile_platform->field, "");
+  EXPECT_EQ(full->mobile_platform->at_station, "station");
+  EXPECT_EQ(full->mobile_platform->kit, "kit");
+  // The same world otherwise.
+  EXPECT_EQ(full->hubs, station->hubs);
+  EXPECT_EQ(full->places, station->places);
+  EXPECT_EQ(full->robot_travel, station->robot_travel);
+  ASSERT_EQ(full->tools.size(), station->tools.size());
+  for (std::size_t i = 0; i < full->tools.size(); ++i) {
+    EXPECT_EQ(full->tools[i].name, station->tools[i].name);
+    EXPECT_EQ(full->tools[i].tool_id_signal, station->tools[i].tool_id_signal);
+    EXPECT_EQ(full->tools[i].dock_signal, station->tools[i].dock_signal);
+  }
+  EXPECT_EQ(full->frame_rests, station->frame_rests);
+  EXPECT_EQ(full->arm_home_signal, station->arm_home_signal);
+  EXPECT_EQ(full->home_above_mm, station->home_above_mm);
+}
+
+TEST(StationConfig, TheMobilePlatformSection) {
+  auto node_type =
+      parse(std::string("mobile_platform: {state: /mir_com/mover/state, at_station: station}\n") + kTools);
+  ASSERT_TRUE(node_type) << node_type.error().message;
+  ASSERT_TRUE(node_type->mobile_platform);
+  EXPECT_EQ(node_type->mobile_platform->state_topic, "/mir_com/mover/state");
+  EXPECT_EQ(node_type->mobile_platform->field, "");
+  EXPECT_EQ(node_type->mobile_platform->at_station, "station");
+  EXPECT_EQ(node_type->mobile_platform->kit, "kit");
+  EXPECT_EQ(node_type->mobile_platform->timeout, std::chrono::milliseconds(1000));
+
+  auto hub =
+      parse(std::string("mobile_platform:\n  state: /mir_com/state\n  field: mover\n  at_station: dock 2\n"
+                        "  timeout_ms: 2500\n") +
+            kTools);
+  ASSERT_TRUE(hub) << hub.error().message;
+  ASSERT_TRUE(hub->mobile_platform);
+  EXPECT_EQ(hub->mobile_platform->state_topic, "/mir_com/state");
+  EXPECT_EQ(hub->mobile_platform->field, "mover");
+  EXPECT_EQ(hub->mobile_platform->at_station, "dock 2") << "a MiR position is any name";
+  EXPECT_EQ(hub->mobile_platform->timeout, std::chrono::milliseconds(2500));
+
+  auto none = parse(kTools);
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_FALSE(none->mobile_platform);
+}
+
 TEST(StationConfig, HubNamesCanBeChanged) {
   auto config = parse(std::string("hubs: {rsp_ecu: rsp2}\n") + kTools);
   ASSERT_TRUE(config) << config.error().message;
@@ -62,6 +115,34 @@ TEST(StationConfig, MistakesNameFileLineAndWhatIsWrong) {
        "only one end-effector can start on the robot"},
       {"tools:\n  smart_tool: {dock: y}\n", "tool_id"},
       {"rate_hz: 0\n" + std::string(kTools), "rate_hz"},
+      {"mobile_platform: {state: /m/state, at_station: s, colour: red}\n" + std::string(kTools),
+       "station.yaml:1"},
+      {"mobile_platform: {state: /m/state, at_station: s, colour: red}\n" + std::string(kTools),
+       "unknown key"},
+      {"mobile_platform: {at_station: s}\n" + std::string(kTools), "missing required key 'state'"},
+      {"mobile_platform: {state: mir/state, at_station: s}\n" + std::string(kTools), "mir/state"},
+      {"mobile_platform: {state: '', at_station: s}\n" + std::string(kTools), "state"},
+      {"mobile_platform: {state: /m/state}\n" + std::string(kTools), "missing required key 'at_station'"},
+      {"mobile_platform: {state: /m/state, at_station: ''}\n" + std::string(kTools), "must not be empty"},
+      {"mobile_platform: {state: /m/state, at_station: " + std::string(65, 'x') + "}\n" + kTools,
+       "at most 64 bytes"},
+      {"mobile_platform: {state: /m/state, at_station: s, field: 'mover.x'}\n" + std::string(kTools),
+       "'mover.x' is not a name"},
+      {"mobile_platform: {state: /m/state, at_station: s, field: ''}\n" + std::string(kTools),
+       "must not be empty"},
+      {"mobile_platform: {state: /m/state, at_station: s, field: poses}\n" + std::string(kTools),
+       "MirComState has no RobotMoverState field 'poses'"},
+      {"mobile_platform: {state: /m/state, at_station: s, kit: roof}\n" + std::string(kTools),
+       "'roof' is not one of the robot's places"},
+      {"ladder_frame: {rests: [engine], start: engine}\nmobile_platform: {state: /m/state, at_station: s}\n" +
+           std::string(kTools),
+       "the ladder frame cannot lie at 'kit'"},
+      {"ladder_frame: {rests: [kit, engine, home]}\nmobile_platform: {state: /m/state, at_station: s, kit: "
+       "home}\n" +
+           std::string(kTools),
+       "the robot starts at 'home'"},
+      {"mobile_platform: {state: /m/state, at_station: s, timeout_ms: 0}\n" + std::string(kTools),
+       "timeout_ms"},
   };
   for (const auto& c : cases) {
     auto config = parse(c.text);

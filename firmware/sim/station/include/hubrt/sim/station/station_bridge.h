@@ -2,7 +2,8 @@
 // takes StationCommands from /sim/station/command, tells each hub the inputs the world gives it
 // through /sim/input — only those that its signals show differently, again after a hold-off
 // until they match, so a hub that starts late or restarts is brought in line — and publishes
-// StationState on /sim/station/state.
+// StationState on /sim/station/state. With a mobile platform configured it also reads the
+// platform's State (the mir_com hub's) and tells the model where the kit is.
 #pragma once
 
 #include <array>
@@ -30,6 +31,8 @@ HUBRT_DDS_TOPIC_TYPE(hub_msgs_msg_dds__StationState_, hub_msgs_msg_dds__StationS
 
 namespace hubrt::sim::station {
 
+class PlatformReader;
+
 inline constexpr std::string_view kStationCommandTopic = "/sim/station/command";
 inline constexpr std::string_view kStationStateTopic = "/sim/station/state";
 // A hub whose signals have not arrived for this long counts as silent.
@@ -45,8 +48,12 @@ class StationBridge {
                                                          StationModel& model,
                                                          std::shared_ptr<spdlog::logger> log);
 
-  // One step at `now`: takes the hubs' signals and the commands that arrived, advances the
-  // model, sends the inputs the hubs lack, publishes the State.
+  ~StationBridge();
+  StationBridge(const StationBridge&) = delete;
+  StationBridge& operator=(const StationBridge&) = delete;
+
+  // One step at `now`: takes the hubs' signals, the mobile platform's State, the commands that arrived,
+  // advances the model, sends the inputs the hubs lack, publishes the State.
   void step(const Instant& now);
 
   // Every wanted input shows in its hub's signals, and every hub is heard.
@@ -76,12 +83,13 @@ class StationBridge {
     dds::Writer<hub_msgs_msg_dds__StationState_> state_writer;
     dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
     dds::Writer<hub_msgs_msg_dds__SimInput_> input_writer;
+    std::unique_ptr<PlatformReader> platform;  // null without a mobile platform configured
   };
 
-  StationBridge(Entities entities, StationModel& model, std::shared_ptr<spdlog::logger> log)
-      : dds_(std::move(entities)), model_(model), log_(std::move(log)) {}
+  StationBridge(Entities entities, StationModel& model, std::shared_ptr<spdlog::logger> log);
 
   void take_signals(Time now);
+  void take_platform(Time now);
   void take_commands(Time now);
   void on_command(Echo command, Time now);
   void reconcile(Time now);
@@ -102,6 +110,7 @@ class StationBridge {
   std::string rejection_;
   Time rejected_at_{};
   std::uint64_t published_ = 0;
+  std::optional<KitPlace> logged_kit_;
 };
 
 }  // namespace hubrt::sim::station

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,19 @@ struct ToolConfig {
   std::string tool_id_signal;  // RSP ECU input: the tool is on the changer
   std::string dock_signal;     // Dock ECU input: the tool sits in its slot
   bool starts_on_robot = false;
+};
+
+// The mobile platform (a MiR100 driven by the mir_com hub) that brings the kit with the ladder
+// frame and takes it away. hubsim reads its State: the kit is at the station while the platform
+// stands at `at_station`.
+struct MobilePlatformConfig {
+  std::string state_topic;  // e.g. "/mir_com/mover/state"
+  // "": state_topic carries a RobotMoverState (node-type layout); else the hub layout's
+  // MirComState, whose field of this name is the mover's State.
+  std::string field;
+  std::string at_station;                              // the platform's position (actual_pose) at the station
+  std::string kit = "kit";                             // the robot's place that is the kit on the platform
+  Duration timeout = std::chrono::milliseconds(1000);  // no State for this long: platform unknown
 };
 
 struct StationConfig {
@@ -66,6 +80,9 @@ struct StationConfig {
   double pre_home_above_mm = 330.0;
   std::string operating_at = "engine";
 
+  // Absent: the kit is always at the station.
+  std::optional<MobilePlatformConfig> mobile_platform;
+
   [[nodiscard]] const ToolConfig* find_tool(std::string_view name) const noexcept;
   // A place or a dock slot.
   [[nodiscard]] bool is_location(std::string_view name) const noexcept;
@@ -73,7 +90,9 @@ struct StationConfig {
 
 // Loads and checks a station description. Errors name file:line:col, the key and the problem:
 // unknown keys, names that are not identifiers, a tool named like a place, references to tools or
-// places that do not exist, more than one tool starting on the robot, thresholds out of order.
+// places that do not exist, more than one tool starting on the robot, thresholds out of order,
+// a mobile platform section with unknown keys, a topic that is not a ROS topic name, an empty
+// position or one longer than RobotMoverState's actual_pose (64 bytes), a field not of MirComState.
 Expected<StationConfig> load_station_config(const std::string& path);
 Expected<StationConfig> parse_station_config(const config::YamlMap& root);
 

@@ -15,6 +15,9 @@
 //     lies, and put down where the gripper opens (it drops where it cannot lie).
 //   - The smart tool's arm sensors follow the tool: in its holder they follow the lift, on the
 //     robot they show "operating" above the engine and "out of range" elsewhere.
+//   - With a mobile platform configured, the kit is at the station only while the platform stands
+//     at its station position: it arrives with a ladder frame on it, and when it leaves, a frame
+//     on the kit leaves with it ("away"); the robot at the kit then is a collision.
 //
 // Pure logic: time is passed in, no DDS. Not thread-safe.
 #pragma once
@@ -36,6 +39,17 @@ std::string_view to_string(ToolPlace place) noexcept;
 
 enum class ArmReading : std::uint8_t { kHome, kPreHome, kOperating, kOutOfRange };
 std::string_view to_string(ArmReading reading) noexcept;
+
+// Where the kit is. Without a mobile platform configured it is always at the station.
+enum class KitPlace : std::uint8_t { kAtStation, kAway, kUnknown };
+// "at_station", "away", "unknown" (the platform's State never heard, or lost).
+std::string_view to_string(KitPlace place) noexcept;
+
+// What the mobile platform's State says (RobotMoverState's moving and actual_pose).
+struct PlatformReport {
+  bool moving = false;
+  std::string_view pose;  // the position the last finished move reached; "" while moving or unknown
+};
 
 // One input of one hub, as the world makes it look.
 struct WorldInput {
@@ -65,7 +79,13 @@ class StationModel {
   // robot holds the frame.
   Expected<void> command(std::string_view action, std::string_view location, Time now);
 
-  // Brings the world to `now`: a robot under way arrives when its travel time is over.
+  // --- What the mobile platform does (its State, when one is configured) ------------------------
+  // The platform's State at `now`. Ignored without a platform configured. The kit arrives when
+  // the platform stands at its station position, and leaves when it moves or stands elsewhere.
+  void observe_platform(const PlatformReport& report, Time now);
+
+  // Brings the world to `now`: a robot under way arrives when its travel time is over; a platform
+  // whose State has not come for its timeout is lost (the kit counts as gone).
   void advance(Time now);
 
   // --- What the world looks like --------------------------------------------------------------
@@ -78,21 +98,29 @@ class StationModel {
   // The tool on the changer, or nullptr.
   [[nodiscard]] const ToolConfig* on_robot() const noexcept;
   [[nodiscard]] ToolPlace tool_place(std::size_t tool) const noexcept { return tools_[tool]; }
-  // "kit", "gripper", "engine", "dropped".
+  // "kit", "gripper", "engine", "dropped", "away" (left with the mobile platform).
   [[nodiscard]] const std::string& ladder_frame() const noexcept { return frame_at_; }
   // Unknown until the RSP ECU's valves were observed.
   [[nodiscard]] std::optional<bool> lock_open() const noexcept { return lock_open_; }
   [[nodiscard]] std::optional<bool> gripper_closed() const noexcept { return gripper_closed_; }
   [[nodiscard]] std::optional<double> lift_mm() const noexcept { return lift_mm_; }
   [[nodiscard]] ArmReading arm() const noexcept;
+  [[nodiscard]] KitPlace kit() const noexcept { return kit_; }
   // What went wrong (dropped tools and frames, collisions), oldest first, until a reset.
   [[nodiscard]] const std::vector<std::string>& faults() const noexcept { return faults_; }
 
   static constexpr std::string_view kGripper = "gripper";
   static constexpr std::string_view kDropped = "dropped";
+  static constexpr std::string_view kAway = "away";
 
  private:
   void start_over();
+  void kit_becomes(KitPlace place);
+  // The kit's place (the mobile platform's), or "" without a platform.
+  [[nodiscard]] std::string_view kit_place() const noexcept;
+  [[nodiscard]] bool kit_here() const noexcept { return kit_ == KitPlace::kAtStation; }
+  // Where restock and reset put the frame: its start, unless that is a kit that is not here.
+  [[nodiscard]] std::string fresh_frame_place() const;
   void arrive();
   void lock_closed();
   void lock_opened();
@@ -112,6 +140,8 @@ class StationModel {
   std::optional<bool> gripper_closed_;
   std::optional<double> lift_mm_;
   std::vector<std::string> faults_;
+  KitPlace kit_ = KitPlace::kAtStation;
+  std::optional<Time> platform_heard_;
 };
 
 }  // namespace hubrt::sim::station
