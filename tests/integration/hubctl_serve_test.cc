@@ -266,6 +266,29 @@ TEST_F(HubctlServeTest, PageEventsAndTheConfirmRule) {
   EXPECT_TRUE(status->exited_with(0)) << status->describe() << serve_->stderr_text();
 }
 
+// The planner's instruction (hubctl play's instruction step) reaches a screen that was already
+// open: the new writer waits for the screen discovery knows, so the first instruction is not lost.
+TEST_F(HubctlServeTest, APlayedInstructionReachesAnOpenScreen) {
+  const auto file = std::filesystem::path(::testing::TempDir()) / "instruction.yaml";
+  std::ofstream(file) << "steps:\n  - instruction: {step: bolts, text: \"Place the 24 bolts, then press "
+                         "done\"}\n";
+  auto play = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, {"play", file.string(), "--timeout", "20"},
+                                                domain_->env());
+  ASSERT_TRUE(play) << play.error().message;
+  auto played = play->wait(kPatience);
+  ASSERT_TRUE(played) << played.error().message;
+  EXPECT_TRUE(played->exited_with(0)) << play->stdout_text() << play->stderr_text();
+  const auto deadline = std::chrono::steady_clock::now() + kPatience;
+  std::string state_json;
+  while (std::chrono::steady_clock::now() < deadline) {
+    state_json = client().Get("/state")->body;
+    if (state_json.find("\"step\":\"bolts\"") != std::string::npos) break;
+    std::this_thread::sleep_for(milliseconds(100));
+  }
+  EXPECT_NE(state_json.find("\"text\":\"Place the 24 bolts, then press done\""), std::string::npos)
+      << state_json;
+}
+
 // hubctl watch shares the screen's discovery and freshness (station_watch): it still finds the
 // operator panel's State and shows it operational and fresh.
 TEST_F(HubctlServeTest, WatchSeesTheSameStation) {

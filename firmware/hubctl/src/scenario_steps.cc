@@ -260,17 +260,39 @@ StepResult StepExecutor::badge(const Step& step) {
   return to_hub(std::string(kSimBadgeTopic), step.target.hub, **type, *document);
 }
 
-// To the operator screens matched by now, without waiting for one: a station may run without a
-// screen, and a screen opened later shows the next instruction.
+// To the operator screens discovery knows (the writer waits until they are matched, so an
+// instruction is not lost to a writer matched too late). A station may run without a screen: only
+// the first instruction of a run gives discovery up to kFirstScreenPatience to find one (this
+// hubctl may have just joined); a screen opened later gets the instruction's next repetition.
 StepResult StepExecutor::instruction(const Step& step) {
+  constexpr auto kFirstScreenPatience = std::chrono::seconds(1);
   auto type = ScenarioTraffic::known_type("hub_msgs/msg/OperatorInstruction");
   if (!type) return failed(type.error().message);
+  if (!looked_for_screens_) {
+    looked_for_screens_ = true;
+    const auto until = SteadyClock::now() + kFirstScreenPatience;
+    for (auto known = traffic_.readers_now(kInstructionTopic);
+         known && *known == 0 && SteadyClock::now() < until;
+         known = traffic_.readers_now(kInstructionTopic)) {
+      traffic_.pump_for(kPoll);
+    }
+  }
   auto document = build(
       **type, {{"step", step.signal}, {"text", step.text}, {"seq", std::to_string(++instruction_seq_)}});
   if (!document) return failed(document.error().message);
-  auto w = traffic_.writer(std::string(kInstructionTopic), **type, 0);
+  auto screens = traffic_.readers_now(kInstructionTopic);
+  if (!screens) return failed(screens.error().message);
+  auto w = traffic_.writer(std::string(kInstructionTopic), **type, *screens);
   if (!w) return failed(w.error().message);
-  return write_once(**w, **type, *document);
+  // Like a command, the instruction is a state (docs/operator-screen.md): sent at once, then again
+  // at the scenario's rate until the next one, so a screen opened later shows it too.
+  Plan& plan = traffic_.plans()[std::string(kInstructionTopic)];
+  plan.writer = *w;
+  plan.sample.emplace(*(*type)->descriptor);
+  if (auto ok = msgs::from_json(**type, *document, plan.sample->data()); !ok)
+    return failed(ok.error().message);
+  ScenarioTraffic::send(plan);
+  return {};
 }
 
 StepResult StepExecutor::fault(const Step& step) {

@@ -52,6 +52,7 @@ class StepExecutor {
                     const nlohmann::ordered_json& document);
 
   ScenarioTraffic& traffic_;
+  bool looked_for_screens_ = false;  // the first instruction waited for discovery to find screens
   // Each instruction a new number, also across runs of hubctl (a screen takes a repeated number
   // for the same instruction): counted on from the time this hubctl started.
   std::uint32_t instruction_seq_ = static_cast<std::uint32_t>(

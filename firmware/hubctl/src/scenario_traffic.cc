@@ -166,4 +166,16 @@ Expected<std::uint32_t> ScenarioTraffic::readers_including(std::string_view ros_
   }
 }
 
+Expected<std::uint32_t> ScenarioTraffic::readers_now(std::string_view ros_topic) {
+  auto dds_name = dds::ros_to_dds_topic(ros_topic);
+  if (!dds_name) return std::move(dds_name).error();
+  auto snapshot = dds::discover(participant_);
+  if (!snapshot) return std::move(snapshot).error();
+  std::uint32_t readers = 0;
+  for (const auto& e : snapshot->endpoints) {
+    if (!e.local && e.direction == dds::EndpointDirection::kReader && e.topic_name == *dds_name) ++readers;
+  }
+  return readers;
+}
+
 }  // namespace hubrt::hubctl

@@ -99,6 +99,8 @@ class ScenarioTraffic {
                                 std::uint32_t readers = 1);
   // The number of remote readers of `ros_topic`, once the hub `hub` is among them.
   Expected<std::uint32_t> readers_including(std::string_view ros_topic, std::string_view hub);
+  // The number of remote readers of `ros_topic` discovery knows now (no waiting).
+  Expected<std::uint32_t> readers_now(std::string_view ros_topic);
 
  private:
   Expected<StateChannel*> channel(const std::string& topic, const msgs::TypeInfo& type);
