@@ -26,8 +26,9 @@ TEST(MirComHubType, TheDefaultConfigurationNeedsTheBoardsHttpDevice) {
   auto required = mir_com_hub_type().requirements(*config);
   ASSERT_TRUE(required) << required.error().message;
   EXPECT_EQ(required->http_devices, std::vector<std::string>{"mir"});
-  for (const std::string& board_file : {std::string(HUBRT_MIR_COM_DIR) + "/../../boards/host-sim-mir-com.yaml",
-                                        std::string(HUBRT_BOARDS_DIR) + "/arm64-mir-com.yaml"}) {
+  for (const std::string& board_file :
+       {std::string(HUBRT_MIR_COM_DIR) + "/../../boards/host-sim-mir-com.yaml",
+        std::string(HUBRT_BOARDS_DIR) + "/arm64-mir-com.yaml"}) {
     auto board = hal::load_board(board_file);
     ASSERT_TRUE(board) << board.error().message;
     EXPECT_TRUE(hal::check_requirements(*board, *required)) << board_file;

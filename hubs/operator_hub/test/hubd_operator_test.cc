@@ -247,10 +247,10 @@ TEST(OperatorBoardTest, CheckReportsAnAllowListMistakeWithItsLine) {
   std::ifstream in(kDir + "/operator_hub.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::ofstream(dir / "operator_hub.yaml") << text;
-  auto finished = integration::run_hubd(
-      *domain,
-      {"--board", kDir + "/../../boards/host-sim-operator-hub.yaml", "--hub", (dir / "operator_hub.yaml").string(), "--check"},
-      seconds(60));
+  auto finished = integration::run_hubd(*domain,
+                                        {"--board", kDir + "/../../boards/host-sim-operator-hub.yaml",
+                                         "--hub", (dir / "operator_hub.yaml").string(), "--check"},
+                                        seconds(60));
   ASSERT_TRUE(finished) << finished.error().message;
   EXPECT_FALSE(finished->status.exited_with(0)) << finished->output;
   EXPECT_NE(finished->output.find("operators.list:2: expected '<SHA-256 in hex (64 digits)> <name>'"),
