@@ -1,7 +1,8 @@
 // operator-enrol (its main is firmware/operator_enrol/main.cc): puts operators on the allow-list
 // (src/allow_list.h) without the badge ever being stored, shown or passed as an argument (a command line is
 // visible to every user in /proc and lands in shell history):
-//   operator-enrol new <file>          a new, empty allow-list with a fresh random salt (mode 0600)
+//   operator-enrol new <file>          a new, empty allow-list with a fresh random salt (mode 0640,
+//                                      group hubrt where it exists)
 //   operator-enrol add <file> <name>   reads the badge from stdin (show it to a keyboard-wedge
 //                                      reader, or type it; echo is off on a terminal), appends
 //                                      "<hash> <name>"; creates the file first if it is missing
@@ -9,6 +10,7 @@
 #include "operator_enrol.h"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -47,8 +49,19 @@ bool write_new_file(const std::string& path) {
       "# SHA-256(salt || badge) only; add operators with: operator-enrol add <this file> <name>\n"
       "salt {}\n",
       std::string_view(hex.data(), hex.size()));
+  // The hub reads it and nobody else: 0640 whatever the umask, group hubrt where that group
+  // exists (the board package makes it; hubd runs as user hubrt), else the creator's group.
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) return false;
+  if (const group* hubrt_group = ::getgrnam("hubrt"); hubrt_group != nullptr) {
+    if (::fchown(fd, static_cast<uid_t>(-1), hubrt_group->gr_gid) != 0) {
+      std::cerr << fmt::format(
+          "operator-enrol: warning: cannot give {} to group hubrt (run as root); hubd "
+          "may not read it\n",
+          path);
+    }
+  }
+  ::fchmod(fd, 0640);
   const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
   return ::close(fd) == 0 && written;
 }

@@ -275,6 +275,10 @@ TEST(OperatorEnrolTest, AddsAnOperatorAsAHashOnly) {
   EXPECT_EQ(text.find("77001234"), std::string::npos) << text;
   EXPECT_EQ(std::filesystem::status(file).permissions() & std::filesystem::perms::others_read,
             std::filesystem::perms::none);
+  // ... and the hub's group (hubrt on a board) reads it: 0640, not the creator's umask.
+  EXPECT_EQ(std::filesystem::status(file).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                std::filesystem::perms::group_read);
   auto list = AllowList::load(file.string());
   ASSERT_TRUE(list) << list.error().message;
   ASSERT_EQ(list->operators().size(), 1U);
