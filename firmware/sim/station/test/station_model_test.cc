@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "station_world_fixture.h"
+
 namespace hubrt::sim::station {
 namespace {
 
@@ -13,43 +15,13 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 
-constexpr Duration kTravel = milliseconds(300);
+using testing::kTravel;
+using testing::test_config;
 
-StationConfig test_config() {
-  StationConfig config;
-  config.robot_travel = kTravel;
-  for (const char* name : {"ladder_frame_tool", "smart_tool", "filter_tool"}) {
-    config.tools.push_back(
-        ToolConfig{name, std::string("rsp.tool_id.") + name, std::string("dock.slot.") + name, false});
-  }
-  return config;
-}
-
-class StationModelTest : public ::testing::Test {
+class StationModelTest : public testing::StationWorldTest {
  protected:
-  StationModelTest() : model_(test_config()) {
-    // The RSP ECU's actuators as they are at the start: lock closed, gripper closed.
-    model_.observe_valve("rsp.lock_valve", false, now());
-    model_.observe_valve("rsp.gripper_valve", true, now());
-    model_.observe_lift("lift_drive", 380.0);
-  }
+  StationModelTest() : StationWorldTest(test_config()) {}
 
-  Time now() const { return clock_.now().mono; }
-  void pass(Duration d) {
-    clock_.advance(d);
-    model_.advance(now());
-  }
-  void command(std::string_view action, std::string_view location = "") {
-    auto done = model_.command(action, location, now());
-    ASSERT_TRUE(done) << done.error().message;
-  }
-  void go(std::string_view location) {
-    command("move_robot", location);
-    pass(kTravel);
-    ASSERT_EQ(model_.robot_at(), location);
-  }
-  void lock(bool open) { model_.observe_valve("rsp.lock_valve", open, now()); }
-  void gripper(bool closed) { model_.observe_valve("rsp.gripper_valve", closed, now()); }
   // Takes `tool` from its slot: open the changer, go there, close it, come back home.
   void take(std::string_view tool) {
     lock(true);
@@ -67,9 +39,6 @@ class StationModelTest : public ::testing::Test {
     return false;
   }
   std::string on_robot() const { return model_.on_robot() == nullptr ? "none" : model_.on_robot()->name; }
-
-  ManualClock clock_;
-  StationModel model_;
 };
 
 TEST_F(StationModelTest, StartsWithEveryToolDockedAndTheRobotHome) {

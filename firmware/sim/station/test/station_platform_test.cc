@@ -5,6 +5,8 @@
 
 #include "hubrt/sim/station/station_model.h"
 
+#include "station_world_fixture.h"
+
 namespace hubrt::sim::station {
 namespace {
 
@@ -13,16 +15,12 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 
-constexpr Duration kTravel = milliseconds(300);
+using testing::kTravel;
+
 constexpr Duration kPlatformTimeout = milliseconds(1000);
 
 StationConfig config_with_platform(bool platform) {
-  StationConfig config;
-  config.robot_travel = kTravel;
-  for (const char* name : {"ladder_frame_tool", "smart_tool", "filter_tool"}) {
-    config.tools.push_back(
-        ToolConfig{name, std::string("rsp.tool_id.") + name, std::string("dock.slot.") + name, false});
-  }
+  StationConfig config = testing::test_config();
   if (platform) {
     config.mobile_platform =
         MobilePlatformConfig{"/mir_com/mover/state", "", "station", "kit", kPlatformTimeout};
@@ -30,30 +28,10 @@ StationConfig config_with_platform(bool platform) {
   return config;
 }
 
-class StationPlatformTest : public ::testing::Test {
+class StationPlatformTest : public testing::StationWorldTest {
  protected:
-  explicit StationPlatformTest(bool platform = true) : model_(config_with_platform(platform)) {
-    model_.observe_valve("rsp.lock_valve", false, now());
-    model_.observe_valve("rsp.gripper_valve", true, now());
-    model_.observe_lift("lift_drive", 380.0);
-  }
+  explicit StationPlatformTest(bool platform = true) : StationWorldTest(config_with_platform(platform)) {}
 
-  Time now() const { return clock_.now().mono; }
-  void pass(Duration d) {
-    clock_.advance(d);
-    model_.advance(now());
-  }
-  void command(std::string_view action, std::string_view location = "") {
-    auto done = model_.command(action, location, now());
-    ASSERT_TRUE(done) << done.error().message;
-  }
-  void go(std::string_view location) {
-    command("move_robot", location);
-    pass(kTravel);
-    ASSERT_EQ(model_.robot_at(), location);
-  }
-  void lock(bool open) { model_.observe_valve("rsp.lock_valve", open, now()); }
-  void gripper(bool closed) { model_.observe_valve("rsp.gripper_valve", closed, now()); }
   void take_frame_tool() {
     lock(true);
     go("ladder_frame_tool");
@@ -63,9 +41,6 @@ class StationPlatformTest : public ::testing::Test {
   // The platform's State, as the mir_com hub's RobotMoverState says it.
   void platform(bool moving, std::string_view pose) { model_.observe_platform({moving, pose}, now()); }
   void platform_at_station() { platform(false, "station"); }
-
-  ManualClock clock_;
-  StationModel model_;
 };
 
 class StationWithoutPlatformTest : public StationPlatformTest {
