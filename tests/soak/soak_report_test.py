@@ -17,7 +17,7 @@ NOMINAL = {"dock_ecu": 10.0}
 
 
 def run(minutes=20, rss=lambda t: 12000, threads=lambda t: 9, fds=lambda t: 20, rate=10.0,
-        period_max=lambda t: 130.0, gaps=lambda t: 0, exit_at=None):
+        period_max=lambda t: 130.0, arrival_max=None, gaps=lambda t: 0, exit_at=None):
     """Samples of one dock_ecu every 30 s; each figure a function of the time in seconds."""
     rows = []
     for k in range(1, int(minutes * 2) + 1):
@@ -28,7 +28,8 @@ def run(minutes=20, rss=lambda t: 12000, threads=lambda t: 9, fds=lambda t: 20, 
             row["note"] = "exited -11"
         else:
             row.update(rss_kb=f"{rss(t):.0f}", threads=str(threads(t)), fds=str(fds(t)), rate_hz=f"{rate}",
-                       period_p99_ms="105", period_max_ms=f"{period_max(t)}", seq_gaps=str(gaps(t)))
+                       period_p99_ms="105", period_max_ms=f"{(arrival_max or period_max)(t)}",
+                       stamp_period_max_ms=f"{period_max(t)}", seq_gaps=str(gaps(t)))
         rows.append(row)
     return soak_report.judge(rows, NOMINAL, minutes)
 
@@ -69,6 +70,21 @@ class VerdictTest(unittest.TestCase):
     def test_a_period_beyond_the_jitter_budget_fails(self):
         self.assertTrue(run(period_max=lambda t: 199.0).ok)
         self.assert_fails_with(run(period_max=lambda t: 250.0 if t == 600 else 130.0), "budget 200")
+
+    def test_a_stall_only_in_the_arrivals_is_the_hosts_not_the_hubs(self):
+        # The sampler (or the host) stalled: its arrivals 400 ms apart, the hub's stamps on time.
+        verdict = run(period_max=lambda t: 130.0, arrival_max=lambda t: 400.0 if t == 600 else 130.0)
+        self.assertTrue(verdict.ok, verdict.lines)
+        self.assertTrue(any("400.0 ms between arrivals" in line for line in verdict.lines), verdict.lines)
+
+    def test_a_late_stamp_fails_even_when_the_arrivals_hide_it(self):
+        self.assert_fails_with(run(period_max=lambda t: 250.0 if t == 600 else 130.0, arrival_max=lambda t: 130.0),
+                               "budget 200")
+
+    def test_a_csv_without_stamps_is_judged_by_arrival(self):
+        row = dict.fromkeys(soak_report.COLUMNS, "")
+        row.update(period_max_ms="250.0")
+        self.assertEqual(soak_report.judged_period(row), 250.0)
 
     def test_a_missing_state_fails(self):
         self.assert_fails_with(run(gaps=lambda t: 1 if t == 900 else 0), "sequence gaps")

@@ -27,25 +27,35 @@ struct HzOptions {
 struct HzResult {
   std::size_t samples = 0;
   double rate_hz = 0;
-  Summary period_ms;
+  Summary period_ms;        // between arrivals here: what a planner sees, this host's delays included
+  Summary stamp_period_ms;  // between the States' header stamps: when the hub itself published
+  bool has_stamp = false;
   std::uint64_t gaps = 0;      // missing sequence numbers
   std::uint64_t reorders = 0;  // sequence numbers that went backwards
   bool has_seq = false;
 };
 
+std::string summary_json(const Summary& s) {
+  return fmt::format(R"({{"min":{:.3f},"p50":{:.3f},"p90":{:.3f},"p99":{:.3f},"max":{:.3f}}})", s.min, s.p50,
+                     s.p90, s.p99, s.max);
+}
+
 void print(const HzResult& r, bool json) {
   if (json) {
     fmt::print(
-        R"({{"samples":{},"rate_hz":{:.3f},"period_ms":{{"min":{:.3f},"p50":{:.3f},"p90":{:.3f},"p99":{:.3f},"max":{:.3f}}},"seq_gaps":{},"seq_backwards":{}}})"
+        R"({{"samples":{},"rate_hz":{:.3f},"period_ms":{},"stamp_period_ms":{},"seq_gaps":{},"seq_backwards":{}}})"
         "\n",
-        r.samples, r.rate_hz, r.period_ms.min, r.period_ms.p50, r.period_ms.p90, r.period_ms.p99,
-        r.period_ms.max, r.gaps, r.reorders);
+        r.samples, r.rate_hz, summary_json(r.period_ms),
+        r.has_stamp ? summary_json(r.stamp_period_ms) : std::string("null"), r.gaps, r.reorders);
     return;
   }
   fmt::print(
-      "rate {:8.3f} Hz  period ms: min {:.3f} p50 {:.3f} p90 {:.3f} p99 {:.3f} max {:.3f}  {}  ({} "
+      "rate {:8.3f} Hz  period ms: min {:.3f} p50 {:.3f} p90 {:.3f} p99 {:.3f} max {:.3f}{}  {}  ({} "
       "samples)\n",
       r.rate_hz, r.period_ms.min, r.period_ms.p50, r.period_ms.p90, r.period_ms.p99, r.period_ms.max,
+      r.has_stamp
+          ? fmt::format("  by stamps: p99 {:.3f} max {:.3f}", r.stamp_period_ms.p99, r.stamp_period_ms.max)
+          : std::string(),
       r.has_seq ? fmt::format("seq gaps {} backwards {}", r.gaps, r.reorders) : std::string("no seq field"),
       r.samples);
 }
@@ -73,11 +83,16 @@ int run_hz(const HzOptions& options) {
   auto reader = dds::UntypedReader::create(*participant, *topic);
   if (!reader) return fmt::print(stderr, "hubctl hz: {}\n", reader.error().message), kExitFailed;
   const auto seq_field = locate(info, "header.seq");
+  const auto stamp_sec = locate(info, "header.stamp.sec");
+  const auto stamp_nanosec = locate(info, "header.stamp.nanosec");
 
   dds::UntypedSample sample(*info.descriptor);
   std::vector<double> periods_ms;
+  std::vector<double> stamp_periods_ms;
   HzResult result;
   result.has_seq = seq_field.has_value();
+  result.has_stamp = stamp_sec && stamp_nanosec;
+  std::optional<double> last_stamp_ms;
   std::optional<double> last_seq;
   std::optional<std::chrono::steady_clock::time_point> first;
   std::optional<std::chrono::steady_clock::time_point> last;
@@ -95,6 +110,7 @@ int run_hz(const HzOptions& options) {
     if (!taken.value()) {
       if (options.window_s == 0 && !options.json && now >= next_report && result.samples > 1) {
         result.period_ms = summarize(periods_ms);
+        result.stamp_period_ms = summarize(stamp_periods_ms);
         result.rate_hz =
             static_cast<double>(result.samples - 1) / std::chrono::duration<double>(*last - *first).count();
         print(result, false);
@@ -117,9 +133,18 @@ int run_hz(const HzOptions& options) {
       }
       last_seq = seq;
     }
+    if (result.has_stamp) {
+      // The hub's own clock: a late period here is the hub's, one only in the arrivals is the
+      // path's or this host's (a stalled receiver), as conformance judges it.
+      const double stamp_ms = read_number(sample.data(), *stamp_sec).value_or(0) * 1e3 +
+                              read_number(sample.data(), *stamp_nanosec).value_or(0) * 1e-6;
+      if (last_stamp_ms) stamp_periods_ms.push_back(stamp_ms - *last_stamp_ms);
+      last_stamp_ms = stamp_ms;
+    }
   }
   if (result.samples > 1) {
     result.period_ms = summarize(periods_ms);
+    result.stamp_period_ms = summarize(stamp_periods_ms);
     result.rate_hz =
         static_cast<double>(result.samples - 1) / std::chrono::duration<double>(*last - *first).count();
   }
