@@ -137,6 +137,32 @@ Expected<void> ScenarioTraffic::wait_for_readers(const WriterEntry& entry, std::
   }
 }
 
+namespace {
+
+// Remote readers of `dds_name` in a discovery snapshot, and whether one of them is the hub `hub`'s
+// (a participant is named after its hub).
+struct ReaderCount {
+  std::uint32_t readers = 0;
+  bool hub_listens = false;
+};
+
+ReaderCount count_readers(const dds::DiscoverySnapshot& snapshot, std::string_view dds_name,
+                          std::string_view hub) {
+  std::set<dds::Guid> hub_keys;
+  for (const auto& p : snapshot.participants) {
+    if (!p.local && !hub.empty() && p.name == hub) hub_keys.insert(p.key);
+  }
+  ReaderCount count;
+  for (const auto& e : snapshot.endpoints) {
+    if (e.local || e.direction != dds::EndpointDirection::kReader || e.topic_name != dds_name) continue;
+    ++count.readers;
+    count.hub_listens |= hub_keys.count(e.participant_key) != 0;
+  }
+  return count;
+}
+
+}  // namespace
+
 Expected<std::uint32_t> ScenarioTraffic::readers_including(std::string_view ros_topic, std::string_view hub) {
   auto dds_name = dds::ros_to_dds_topic(ros_topic);
   if (!dds_name) return std::move(dds_name).error();
@@ -144,18 +170,8 @@ Expected<std::uint32_t> ScenarioTraffic::readers_including(std::string_view ros_
   while (true) {
     auto snapshot = dds::discover(participant_);
     if (!snapshot) return std::move(snapshot).error();
-    std::set<dds::Guid> hub_keys;
-    for (const auto& p : snapshot->participants) {
-      if (!p.local && p.name == hub) hub_keys.insert(p.key);
-    }
-    std::uint32_t readers = 0;
-    bool hub_listens = false;
-    for (const auto& e : snapshot->endpoints) {
-      if (e.local || e.direction != dds::EndpointDirection::kReader || e.topic_name != *dds_name) continue;
-      ++readers;
-      hub_listens |= hub_keys.count(e.participant_key) != 0;
-    }
-    if (hub_listens) return readers;
+    const ReaderCount count = count_readers(*snapshot, *dds_name, hub);
+    if (count.hub_listens) return count.readers;
     if (SteadyClock::now() >= deadline || stop_requested()) {
       return make_error(
           ErrorCode::kNotFound,
@@ -171,11 +187,7 @@ Expected<std::uint32_t> ScenarioTraffic::readers_now(std::string_view ros_topic)
   if (!dds_name) return std::move(dds_name).error();
   auto snapshot = dds::discover(participant_);
   if (!snapshot) return std::move(snapshot).error();
-  std::uint32_t readers = 0;
-  for (const auto& e : snapshot->endpoints) {
-    if (!e.local && e.direction == dds::EndpointDirection::kReader && e.topic_name == *dds_name) ++readers;
-  }
-  return readers;
+  return count_readers(*snapshot, *dds_name, {}).readers;
 }
 
 }  // namespace hubrt::hubctl
