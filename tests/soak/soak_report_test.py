@@ -17,7 +17,7 @@ NOMINAL = {"dock_ecu": 10.0}
 
 
 def run(minutes=20, rss=lambda t: 12000, threads=lambda t: 9, fds=lambda t: 20, rate=10.0,
-        period_max=lambda t: 130.0, arrival_max=None, gaps=lambda t: 0, exit_at=None):
+        period_max=lambda t: 130.0, arrival_max=None, gaps=lambda t: 0, host_late=lambda t: 1.0, exit_at=None):
     """Samples of one dock_ecu every 30 s; each figure a function of the time in seconds."""
     rows = []
     for k in range(1, int(minutes * 2) + 1):
@@ -29,7 +29,8 @@ def run(minutes=20, rss=lambda t: 12000, threads=lambda t: 9, fds=lambda t: 20, 
         else:
             row.update(rss_kb=f"{rss(t):.0f}", threads=str(threads(t)), fds=str(fds(t)), rate_hz=f"{rate}",
                        period_p99_ms="105", period_max_ms=f"{(arrival_max or period_max)(t)}",
-                       stamp_period_max_ms=f"{period_max(t)}", seq_gaps=str(gaps(t)))
+                       stamp_period_max_ms=f"{period_max(t)}", seq_gaps=str(gaps(t)),
+                       host_late_max_ms=f"{host_late(t)}")
         rows.append(row)
     return soak_report.judge(rows, NOMINAL, minutes)
 
@@ -80,6 +81,17 @@ class VerdictTest(unittest.TestCase):
     def test_a_late_stamp_fails_even_when_the_arrivals_hide_it(self):
         self.assert_fails_with(run(period_max=lambda t: 250.0 if t == 600 else 130.0, arrival_max=lambda t: 130.0),
                                "budget 200")
+
+    def test_a_late_period_while_the_host_stalled_is_the_hosts(self):
+        # Every process of the station late together: a bare loop beside them woke 450 ms late.
+        verdict = run(period_max=lambda t: 540.0 if t == 600 else 130.0,
+                      host_late=lambda t: 450.0 if t == 600 else 2.0)
+        self.assertTrue(verdict.ok, verdict.lines)
+        self.assertTrue(any("while the host itself stalled" in line for line in verdict.lines), verdict.lines)
+
+    def test_a_hub_later_than_the_host_stalled_still_fails(self):
+        self.assert_fails_with(run(period_max=lambda t: 540.0 if t == 600 else 130.0,
+                                   host_late=lambda t: 100.0 if t == 600 else 2.0), "the host stalled 100 ms")
 
     def test_a_csv_without_stamps_is_judged_by_arrival(self):
         row = dict.fromkeys(soak_report.COLUMNS, "")
