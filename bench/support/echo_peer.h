@@ -33,8 +33,9 @@ Expected<Peer> open_peer(dds_entity_t participant, std::string name, const std::
 
 // `samples` round trips alternating two actions (each takes effect, so each is answered at once);
 // recorded into latencies_ms when `record`, lost ones counted. `gap_s`: a pause after each round
-// trip (a hub publishes at most one immediate State per node per immediate_state_interval, 10 ms by
-// default: back-to-back commands measure that budget rather than the path).
+// trip (a hub's immediate States come from a token bucket of 4 refilled one per
+// immediate_state_interval, 10 ms by default: more commands back to back than that measure the
+// budget rather than the path).
 void run_block(Peer& peer, std::size_t samples, bool record, double gap_s = 0.0);
 
 }  // namespace hubrt::bench

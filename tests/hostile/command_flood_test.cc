@@ -1,9 +1,10 @@
 // A planner that flips its command floods nobody (issue 11): a real hubd (Tool ECU on the fake
 // HAL) and two writers alternating the smart tool's command between "idle" and "inhibit" as fast
 // as they can. Before the budget of immediate States every change published a State at once
-// (5,420 States/s from one hub); now the tool's State rate stays within one immediate State per
-// immediate_state_interval_ms (10 ms) plus the heartbeat, the heartbeat keeps its period, the
-// last command is echoed, and /diagnostics counts the held-back States.
+// (5,420 States/s from one hub); now the tool's State rate stays within the budget's token bucket
+// (a burst of 4, then one immediate State per immediate_state_interval_ms, 10 ms) plus the
+// heartbeat, the heartbeat keeps its period, the last command is echoed, and /diagnostics counts
+// the held-back States and publishes the bucket.
 #include <atomic>
 #include <cstdio>
 #include <map>
@@ -36,6 +37,7 @@ using DiagnosticArray = diagnostic_msgs_msg_dds__DiagnosticArray_;
 constexpr auto kPatience = seconds(20);
 constexpr double kPeriodS = 0.1;    // tool_ecu.yaml: rate_hz 10
 constexpr double kBudgetS = 0.010;  // immediate_state_interval_ms default
+constexpr double kBurst = 4;        // runtime::kDefaultImmediateStateBurst
 constexpr double kFloodS = 3.0;
 
 double stamp_s(const SmartToolState& s) {
@@ -175,9 +177,9 @@ TEST(CommandFlood, TwoPlannersFlippingTheCommandStayWithinTheBudgetAndTheHeartbe
   const double state_rate = published / span_s;
   std::printf("flood: %.0f commands/s written, %.1f States/s published over %.2f s\n", write_rate, state_rate,
               span_s);
-  // At most one immediate State per 10 ms and one heartbeat per 100 ms: 110/s. The budget is
-  // exact on the hub's own clock; +2 States for the edges of the window.
-  EXPECT_LE(published, span_s * (1 / kBudgetS + 1 / kPeriodS) + 2)
+  // At most the burst plus one immediate State per 10 ms, and one heartbeat per 100 ms: 110/s.
+  // The budget is exact on the hub's own clock; +2 States for the edges of the window.
+  EXPECT_LE(published, span_s * (1 / kBudgetS + 1 / kPeriodS) + kBurst + 2)
       << state_rate << " States/s while planners wrote " << write_rate << " commands/s";
 
   // The heartbeat keeps its period: no two consecutive States further apart than a period, plus
@@ -215,6 +217,9 @@ TEST(CommandFlood, TwoPlannersFlippingTheCommandStayWithinTheBudgetAndTheHeartbe
   const auto interval = diagnostic_value(diag.get(), "tool_ecu: cycle", "immediate_state_interval_ms");
   ASSERT_TRUE(interval);
   EXPECT_EQ(std::stod(*interval), 10.0);
+  const auto burst = diagnostic_value(diag.get(), "tool_ecu: cycle", "immediate_state_burst");
+  ASSERT_TRUE(burst) << "/diagnostics publishes the bucket's size";
+  EXPECT_EQ(std::stod(*burst), kBurst);
 }
 
 }  // namespace

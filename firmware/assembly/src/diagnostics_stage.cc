@@ -4,6 +4,7 @@
 
 #include "hubrt/dds/oversize_samples.h"
 #include "hubrt/hub_api/topic_names.h"
+#include "hubrt/runtime/immediate_state_budget.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -95,8 +96,11 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("period_ms", period_ms);
   add("rate_hz", 1e3 / period_ms);
   if (command_timeout_ > Duration::zero()) add("command_timeout_ms", to_seconds(command_timeout_) * 1e3);
-  if (immediate_state_interval_ > Duration::zero())
+  // The token bucket of immediate States (runtime/immediate_state_budget.h): refill period, size.
+  if (immediate_state_interval_ > Duration::zero()) {
     add("immediate_state_interval_ms", to_seconds(immediate_state_interval_) * 1e3);
+    add("immediate_state_burst", runtime::kDefaultImmediateStateBurst);
+  }
   add("cycles", stats.cycles);
   add("command_steps", stats.command_steps);
   add("overruns", stats.overruns);

@@ -1,6 +1,7 @@
-// The budget of immediate States (issue 11): a planner flipping its command at kHz rates must not
-// turn a hub into a State flood, and a well-behaved planner must not notice the budget at all.
-// Driven by a ManualClock through Hub, as hubd's CycleRunner drives it.
+// The budget of immediate States (issue 11, a token bucket since issue 16): a planner flipping its
+// command at kHz rates must not turn a hub into a State flood, a well-behaved planner must not
+// notice the budget at all, and a few commands back to back after a quiet period are all echoed
+// at once. Driven by a ManualClock, through Hub as hubd's CycleRunner drives it, and bare.
 #include "hubrt/runtime/immediate_state_budget.h"
 
 #include <algorithm>
@@ -96,23 +97,24 @@ class BudgetTest : public ::testing::Test {
   std::vector<Time> heartbeats_;
 };
 
-TEST_F(BudgetTest, AFloodOfAlternatingCommandsStaysWithinOneImmediateStatePerIntervalAndTheHeartbeatGoesOn) {
+TEST_F(BudgetTest, AFloodOfAlternatingCommandsStaysWithinTheBucketAndTheHeartbeatGoesOn) {
   // Two writers alternating open/close at 5 kHz each: a command every 100 us for one second.
   run(std::chrono::seconds(1), microseconds(100), [](int i) { return i % 2 == 0 ? "open" : "close"; });
 
-  std::size_t immediate = 0;
-  std::optional<Time> last_immediate;
+  std::vector<Time> immediate;
   for (const auto& p : sink_.published) {
-    if (p.heartbeat) continue;
-    ++immediate;
-    if (last_immediate) {
-      EXPECT_GE(p.at - *last_immediate, kBudget) << "two immediate States closer than the budget";
-    }
-    last_immediate = p.at;
+    if (!p.heartbeat) immediate.push_back(p.at);
   }
-  // One second: at most one immediate State per 10 ms window, and 10 heartbeats at 100 ms.
-  EXPECT_LE(immediate, 100u);
-  EXPECT_GE(immediate, 90u) << "the flood still gets its States at the budget's pace";
+  // Over any span t at most burst + t / interval immediate States: checked on every 50 ms span
+  // starting at an immediate State.
+  for (std::size_t i = 0; i < immediate.size(); ++i) {
+    const auto in_span = std::count_if(immediate.begin() + static_cast<std::ptrdiff_t>(i), immediate.end(),
+                                       [&](Time t) { return t < immediate[i] + milliseconds(50); });
+    EXPECT_LE(in_span, kDefaultImmediateStateBurst + 5) << "at " << i;
+  }
+  // One second: the burst, then one per 10 ms; and 10 heartbeats at 100 ms.
+  EXPECT_LE(immediate.size(), kDefaultImmediateStateBurst + 100u);
+  EXPECT_GE(immediate.size(), 95u) << "the flood still gets its States at the budget's pace";
   ASSERT_EQ(heartbeats_.size(), 10u);
   for (const Time beat : heartbeats_) {
     EXPECT_EQ(std::count_if(sink_.published.begin(), sink_.published.end(),
@@ -122,20 +124,40 @@ TEST_F(BudgetTest, AFloodOfAlternatingCommandsStaysWithinOneImmediateStatePerInt
   }
   // Before the budget (issue 11) every one of the 10,000 changes published a State at once; now
   // every change that did not is counted (for /diagnostics).
-  EXPECT_EQ(node_->states_deferred(), 10'000u - immediate);
+  EXPECT_EQ(node_->states_deferred(), 10'000u - immediate.size());
   EXPECT_EQ(hub_.states_deferred(), node_->states_deferred());
+}
+
+TEST_F(BudgetTest, CommandsBackToBackAfterAQuietPeriodAreAllEchoedAtOnceUpToTheBurst) {
+  // A planner that sends its next command as soon as the echo of the last one is back (a round
+  // trip of 100 us): with issue 11's plain interval the second one already waited for the
+  // heartbeat (8.9 ms p50 in the echo benchmark).
+  clock_.advance(kPeriod);
+  for (std::uint32_t i = 0; i < kDefaultImmediateStateBurst; ++i) {
+    command(i % 2 == 0 ? "open" : "close");
+    const std::size_t before = sink_.published.size();
+    hub_.command_step(clock_.now());
+    ASSERT_EQ(sink_.published.size(), before + 1) << "command " << i << " was not echoed at once";
+    EXPECT_EQ(sink_.published.back().echo, i % 2 == 0 ? "open" : "close");
+    clock_.advance(microseconds(100));
+  }
+  EXPECT_EQ(node_->states_deferred(), 0u);
+  command("open");  // one more than the burst, still back to back: capped
+  hub_.command_step(clock_.now());
+  EXPECT_EQ(node_->states_deferred(), 1u);
 }
 
 TEST_F(BudgetTest, TheLatestCommandWinsAtOnceAndTheNextStateEchoesIt) {
   run(milliseconds(50), microseconds(100), [](int i) { return i % 2 == 0 ? "open" : "close"; });
-  clock_.advance(kBudget);  // quiet for one window: the next change publishes at once
-  command("open");
-  hub_.command_step(clock_.now());
-  command("close");
-  clock_.advance(microseconds(100));
-  hub_.command_step(clock_.now());
+  // Twice the burst of changes at one instant, the last one "close": the bucket holds at most
+  // the burst, so the last ones are held back.
+  const std::uint64_t deferred_before = node_->states_deferred();
+  for (std::uint32_t i = 0; i < 2 * kDefaultImmediateStateBurst; ++i) {
+    command(i % 2 == 0 ? "open" : "close");
+    hub_.command_step(clock_.now());
+  }
   EXPECT_FALSE(world_.open) << "the command took effect at once; only its State waits";
-  EXPECT_EQ(sink_.published.back().echo, "open") << "the State of 'close' was held back";
+  EXPECT_GT(node_->states_deferred(), deferred_before);
   const std::size_t before = sink_.published.size();
   // No more commands: the next State is the heartbeat, and it echoes the latest command.
   run(kPeriod, milliseconds(1), [](int) -> const char* { return nullptr; });
@@ -144,28 +166,33 @@ TEST_F(BudgetTest, TheLatestCommandWinsAtOnceAndTheNextStateEchoesIt) {
   EXPECT_TRUE(sink_.published[before].heartbeat);
 }
 
-TEST_F(BudgetTest, AHeldBackChangeGoesOutWithTheFirstStepAfterTheWindowEvenForARepeat) {
-  command("open");
-  hub_.command_step(clock_.now());  // first change: at once
+TEST_F(BudgetTest, AHeldBackChangeGoesOutWithTheFirstStepOnceATokenIsBackEvenForARepeat) {
+  for (std::uint32_t i = 0; i < kDefaultImmediateStateBurst; ++i) {  // the burst: all at once
+    command(i % 2 == 0 ? "open" : "close");
+    hub_.command_step(clock_.now());
+  }
+  ASSERT_EQ(sink_.published.size(), kDefaultImmediateStateBurst);
+  const char* last = kDefaultImmediateStateBurst % 2 == 0 ? "open" : "close";
   clock_.advance(milliseconds(1));
-  command("close");
-  hub_.command_step(clock_.now());  // 1 ms later: held back
-  ASSERT_EQ(sink_.published.size(), 1u);
+  command(last);
+  hub_.command_step(clock_.now());  // the bucket is empty: held back
+  ASSERT_EQ(sink_.published.size(), kDefaultImmediateStateBurst);
   EXPECT_EQ(node_->states_deferred(), 1u);
   clock_.advance(milliseconds(5));
-  command("close");
-  hub_.command_step(clock_.now());  // a repeat, still inside the window: nothing
-  EXPECT_EQ(sink_.published.size(), 1u);
+  command(last);
+  hub_.command_step(clock_.now());  // a repeat, 6 ms after the burst: still no token
+  EXPECT_EQ(sink_.published.size(), kDefaultImmediateStateBurst);
   clock_.advance(kBudget);
-  command("close");
-  hub_.command_step(clock_.now());  // a repeat after the window: the held-back State goes out
-  ASSERT_EQ(sink_.published.size(), 2u);
-  EXPECT_EQ(sink_.published[1].echo, "close");
+  command(last);
+  hub_.command_step(clock_.now());  // a repeat once a token is back: the held-back State goes out
+  ASSERT_EQ(sink_.published.size(), kDefaultImmediateStateBurst + 1);
+  EXPECT_EQ(sink_.published.back().echo, last);
   EXPECT_EQ(node_->states_deferred(), 1u) << "a repeat is no change and is never counted";
   clock_.advance(kBudget);
-  command("close");
+  command(last);
   hub_.command_step(clock_.now());
-  EXPECT_EQ(sink_.published.size(), 2u) << "nothing is waiting any more: repeats stay silent";
+  EXPECT_EQ(sink_.published.size(), kDefaultImmediateStateBurst + 1)
+      << "nothing is waiting any more: repeats stay silent";
 }
 
 TEST_F(BudgetTest, APlannerCommandingEvery20To120MsNeverWaitsForTheBudget) {
@@ -197,7 +224,7 @@ TEST(ImmediateStateBudget, AZeroIntervalAllowsEveryChangeAndTheHeartbeatClearsWh
   for (int i = 0; i < 5; ++i) EXPECT_TRUE(none.publish_now(clock.now().mono, true));
   EXPECT_FALSE(none.publish_now(clock.now().mono, false)) << "no change, nothing to publish";
 
-  ImmediateStateBudget budget(kBudget);
+  ImmediateStateBudget budget(kBudget, 1);
   EXPECT_TRUE(budget.publish_now(clock.now().mono, true));
   EXPECT_FALSE(budget.publish_now(clock.now().mono, true));
   EXPECT_TRUE(budget.held_back());
@@ -206,6 +233,50 @@ TEST(ImmediateStateBudget, AZeroIntervalAllowsEveryChangeAndTheHeartbeatClearsWh
   clock.advance(kBudget);
   EXPECT_FALSE(budget.publish_now(clock.now().mono, false)) << "the heartbeat already carried the change";
   EXPECT_EQ(budget.deferred(), 1u);
+}
+
+// The bucket alone, on a manual clock (issue 16): burst, cap, refill.
+TEST(ImmediateStateBudget, TheBurstPassesAtOnceThenTheBucketCapsIt) {
+  ManualClock clock;
+  ImmediateStateBudget budget(kBudget, 4);
+  EXPECT_EQ(budget.burst(), 4u);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(budget.publish_now(clock.now().mono, true)) << "change " << i;
+  EXPECT_FALSE(budget.publish_now(clock.now().mono, true)) << "the fifth at the same instant";
+  EXPECT_TRUE(budget.held_back());
+  EXPECT_EQ(budget.deferred(), 1u);
+  clock.advance(kBudget - std::chrono::nanoseconds(1));
+  EXPECT_FALSE(budget.publish_now(clock.now().mono, false)) << "no token before one interval";
+  EXPECT_FALSE(budget.publish_now(clock.now().mono, true));
+  EXPECT_EQ(budget.deferred(), 2u);
+}
+
+TEST(ImmediateStateBudget, TheBucketRefillsAtOneTokenPerIntervalUpToTheBurstOnly) {
+  ManualClock clock;
+  ImmediateStateBudget budget(kBudget, 4);
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(budget.publish_now(clock.now().mono, true));
+  // Empty: one token per interval, however many changes come.
+  for (int k = 1; k <= 3; ++k) {
+    clock.advance(kBudget);
+    EXPECT_TRUE(budget.publish_now(clock.now().mono, true)) << "the token of interval " << k;
+    EXPECT_FALSE(budget.publish_now(clock.now().mono, true)) << "only one per interval";
+  }
+  // Two quiet intervals give two tokens, not more.
+  clock.advance(2 * kBudget);
+  EXPECT_TRUE(budget.publish_now(clock.now().mono, true));
+  EXPECT_TRUE(budget.publish_now(clock.now().mono, true));
+  EXPECT_FALSE(budget.publish_now(clock.now().mono, true));
+  // A long quiet period fills the bucket to the burst and no further.
+  clock.advance(std::chrono::seconds(10));
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(budget.publish_now(clock.now().mono, true)) << "change " << i;
+  EXPECT_FALSE(budget.publish_now(clock.now().mono, true)) << "10 s of quiet store 4 tokens, not 1000";
+  // Over a flood of one second, a change every 100 us: the burst plus 100.
+  int passed = 0;
+  clock.advance(std::chrono::seconds(1));
+  for (int i = 0; i < 10'000; ++i) {
+    passed += budget.publish_now(clock.now().mono, true) ? 1 : 0;
+    clock.advance(microseconds(100));
+  }
+  EXPECT_EQ(passed, 4 + 99);  // the burst, then one per 10 ms over the 0.9999 s after the first
 }
 
 }  // namespace

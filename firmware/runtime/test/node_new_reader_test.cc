@@ -20,6 +20,9 @@ class NodeNewReaderTest : public ::testing::Test {
     NodeOptions options;
     options.name = "v1";
     options.immediate_state_interval = milliseconds(10);
+    // A bucket of one token: a second State within 10 ms waits (the default burst of
+    // ImmediateStateBudget is tested in immediate_state_budget_test.cc).
+    options.immediate_state_burst = 1;
     node_ = std::make_unique<Node<ValveLogic>>(options, ValveLogic(world_), source_, sink_, ops_);
   }
   // A step between heartbeats, as Hub::command_step runs it.

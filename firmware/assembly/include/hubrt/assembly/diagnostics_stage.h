@@ -31,8 +31,9 @@ class DiagnosticsStage final : public runtime::CycleStage {
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as
   // `hubctl conformance` learn the watchdog's timeout from the wire; likewise a positive
-  // `immediate_state_interval` (key immediate_state_interval_ms), the budget of immediate States,
-  // so that a tool measuring echo latency spaces its changes by at least that much; and
+  // `immediate_state_interval` (key immediate_state_interval_ms, with immediate_state_burst: the
+  // token bucket of immediate States), so that a tool measuring echo latency spaces its changes
+  // by at least that much; and
   // `log_lines_dropped` when given (key log_lines_dropped: log lines lost to a closed stderr;
   // must outlive the stage).
   // Errors: the DDS topic or writer that could not be created.

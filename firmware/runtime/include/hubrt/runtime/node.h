@@ -74,8 +74,10 @@ struct NodeOptions {
   std::string name;
   Duration command_timeout = std::chrono::milliseconds(1000);
   Addressing addressing = Addressing::kIgnoreOthers;
-  // At most one immediate State (outside the heartbeat) per this interval: ImmediateStateBudget.
+  // Immediate States (outside the heartbeat): a token bucket refilled at one per this interval,
+  // holding at most `immediate_state_burst` (ImmediateStateBudget).
   Duration immediate_state_interval = kDefaultImmediateStateInterval;
+  std::uint32_t immediate_state_burst = kDefaultImmediateStateBurst;
   std::shared_ptr<spdlog::logger> log;
 };
 
@@ -145,7 +147,7 @@ class Node final : public NodeBase {
         sink_(sink),
         ops_(ops),
         tracker_(options_.command_timeout),
-        budget_(options_.immediate_state_interval),
+        budget_(options_.immediate_state_interval, options_.immediate_state_burst),
         arenas_{Arena(kEchoArenaBytes), Arena(kEchoArenaBytes)} {
     static_assert(
         std::find(Logic::kActions.begin(), Logic::kActions.end(), kResetAction) != Logic::kActions.end(),
