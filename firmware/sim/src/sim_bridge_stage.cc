@@ -131,23 +131,42 @@ void SimBridgeStage::before_nodes(const Instant& now) noexcept {
   }
 }
 
-void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
-  if (!publish_all) return;
+bool SimBridgeStage::read_signals(const Instant& now) noexcept {
+  bool changed = false;
   for (std::size_t i = 0; i < signals_.size(); ++i) {
     const Result<bool> level = fake_.active(signals_[i].name);
-    wire_signals_[i].active = level.is_ok() && level.value();
+    const bool active = level.is_ok() && level.value();
+    changed |= wire_signals_[i].active != active;
+    wire_signals_[i].active = active;
   }
   for (std::size_t i = 0; i < valves_.size(); ++i) {
-    wire_valves_[i].energised = fake_.valve(valves_[i])->in_energised_position();
+    const bool energised = fake_.valve(valves_[i])->in_energised_position();
+    changed |= wire_valves_[i].energised != energised;
+    wire_valves_[i].energised = energised;
   }
   for (std::size_t i = 0; i < lifts_.size(); ++i) {
-    wire_lifts_[i].position_mm = static_cast<float>(fake_.lift_drive(lifts_[i])->position_mm(now.mono));
+    const auto position = static_cast<float>(fake_.lift_drive(lifts_[i])->position_mm(now.mono));
+    changed |= wire_lifts_[i].position_mm != position;
+    wire_lifts_[i].position_mm = position;
   }
-  dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced next cycle
+  return changed;
+}
+
+void SimBridgeStage::write_signals(const Instant& now) noexcept {
+  dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced soon
+  last_written_ = now.mono;
+}
+
+void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
+  if (!publish_all) return;
+  const bool changed = read_signals(now);
+  const bool due = !last_written_ || now.mono - *last_written_ >= kSimSignalsKeepAlive;
+  if (changed || due || dds_.signals_writer.take_new_readers() > 0) write_signals(now);
 }
 
 void SimBridgeStage::after_safe_state(const Instant& now) noexcept {
-  after_nodes(now, /*publish_all=*/true, /*took_effect=*/false);
+  read_signals(now);
+  write_signals(now);  // always: the watchers see the safe outputs
   // The writer is reliable, but Cyclone's writer linger "is currently not applied when Cyclone DDS
   // is requested to terminate" (docs/manual/config.rst, Lingering writers): wait for the readers'
   // acknowledgements (dds_wait_for_acks, dds.h) before hubd deletes its participant. Bounded, and

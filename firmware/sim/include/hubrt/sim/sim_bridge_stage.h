@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,16 @@ inline constexpr std::string_view kSimInputTopic = "/sim/input";
 inline constexpr std::string_view kSimBadgeTopic = "/sim/badge";
 inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
+// The signals are published after a periodic cycle when one changed, when a new reader matched,
+// and otherwise at least this often (the station model takes a hub silent for a second as gone:
+// station_bridge.h, kSilentAfter). Unchanged signals are not written every cycle: at 1 kHz that
+// was a second DDS write per cycle beside the State.
+inline constexpr Duration kSimSignalsKeepAlive = std::chrono::milliseconds(100);
 
 class SimBridgeStage final : public runtime::CycleStage {
  public:
-  // Publishes every input and output signal of `board`, its valves and its lift drives.
+  // Publishes every input and output signal of `board`, its valves and its lift drives (when they
+  // change; see kSimSignalsKeepAlive).
   // Errors: the DDS entities.
   static Expected<std::unique_ptr<SimBridgeStage>> create(const dds::Participant& participant,
                                                           std::string hub_name, const hal::BoardConfig& board,
@@ -66,6 +73,9 @@ class SimBridgeStage final : public runtime::CycleStage {
   SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,
                  hal::fake::FakeBackend& fake, std::shared_ptr<spdlog::logger> log);
   void apply_fault(const hub_msgs_msg_dds__SimFault_& fault, Time now) noexcept;
+  // Reads the signals into the wire sample; true when one differs from what was last written.
+  bool read_signals(const Instant& now) noexcept;
+  void write_signals(const Instant& now) noexcept;
 
   Entities dds_;
   std::string hub_name_;
@@ -75,6 +85,7 @@ class SimBridgeStage final : public runtime::CycleStage {
   std::vector<std::string> lifts_;   // Modbus devices with a lift drive simulator
   hal::fake::FakeBackend& fake_;
   std::shared_ptr<spdlog::logger> log_;
+  std::optional<Time> last_written_;  // monotonic time of the last signals sample
   dds::Sample<hub_msgs_msg_dds__SimInput_> input_;
   dds::Sample<hub_msgs_msg_dds__SimFault_> fault_;
   dds::Sample<hub_msgs_msg_dds__SimBadge_> badge_;
