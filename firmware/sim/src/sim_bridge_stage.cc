@@ -57,8 +57,11 @@ SimBridgeStage::SimBridgeStage(Entities entities, std::string hub_name, const ha
       board_(board),
       fake_(fake),
       log_(std::move(log)) {
-  for (const auto& input : board.inputs) signals_.push_back(Signal{input.config.signal, false});
-  for (const auto& output : board.outputs) signals_.push_back(Signal{output.config.signal, true});
+  for (const auto& input : board.inputs) signals_.push_back(Signal{input.config.signal, false, {}});
+  for (const auto& output : board.outputs) signals_.push_back(Signal{output.config.signal, true, {}});
+  for (auto& signal : signals_) {
+    if (const auto wired = fake_.wiring(signal.name); wired.is_ok()) signal.wiring = wired.value();
+  }
   if (board.simulation) {
     for (const auto& valve : board.simulation->valves) {
       if (fake_.valve(valve.output) != nullptr) valves_.push_back(valve.output);
@@ -134,8 +137,15 @@ void SimBridgeStage::before_nodes(const Instant& now) noexcept {
 bool SimBridgeStage::read_signals(const Instant& now) noexcept {
   bool changed = false;
   for (std::size_t i = 0; i < signals_.size(); ++i) {
-    const Result<bool> level = fake_.active(signals_[i].name);
-    const bool active = level.is_ok() && level.value();
+    const Signal& signal = signals_[i];
+    bool active = false;
+    if (signal.wiring) {
+      const Result<bool> high = signal.wiring->chip->level(signal.wiring->line);
+      active = high.is_ok() && high.value() != (signal.wiring->polarity == hal::Polarity::kActiveLow);
+    } else {
+      const Result<bool> level = fake_.active(signal.name);
+      active = level.is_ok() && level.value();
+    }
     changed |= wire_signals_[i].active != active;
     wire_signals_[i].active = active;
   }

@@ -59,6 +59,10 @@ class SimBridgeStage final : public runtime::CycleStage {
   struct Signal {
     std::string name;
     bool output = false;
+    // Resolved once (board lookup by name, chip by name): reading it by name every cycle was most
+    // of a simulated hub's cycle (callgrind). Chips are never removed from the fake GPIO, so the
+    // pointer stays valid; unresolved (chip missing at start) reads by name.
+    std::optional<hal::fake::FakeBackend::Wiring> wiring;
   };
   struct Entities {
     dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
