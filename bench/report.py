@@ -78,7 +78,8 @@ def cycle_section(report, cycle):
         "## Heap allocations and cost per cycle",
         "",
         "`hubrt_bench_cycle` (Google Benchmark): a Dock ECU hub assembled in-process on the fake backend, a "
-        "planner thread commanding it every 10 ms, one `hub.cycle()` per millisecond; side by side, one raw "
+        "planner thread commanding it every 10 ms (its instance registered), one `hub.cycle()` per millisecond; "
+        "side by side, one raw "
         "`dds_write` of the same DockState per millisecond (its instance registered), and one write of it through "
         "hubrt's `dds::Writer` (Cyclone's serialiser into the writer's pool of serdata, handed over with "
         "`dds_writecdr`: firmware/dds/README.md). "
@@ -126,8 +127,10 @@ def cycle_section(report, cycle):
                f"pooled write: {pooled_text})",
                worst == 0 and worst_process == 0,
                f"the cycle thread allocates {worst:.3f} times per cycle and the whole process {worst_process:.3f} "
-               "times (the planner thread's own writes and Cyclone's receive path included). The State writes "
-               "themselves allocate nothing (hubrt's pooled write path; Cyclone's `dds_write` would allocate "
+               "times: Cyclone's timed-event thread sends its own periodic discovery and liveliness messages (a "
+               "serdata and a queued message each, a few a second whatever the rate; tests/integration "
+               "hub_process_alloc_test counts them apart and finds nothing else). The State writes allocate "
+               "nothing (hubrt's pooled write path; Cyclone's `dds_write` allocates "
                f"{per_write:.2f} times per write, ddsi_serdata_default.c).")
 
 

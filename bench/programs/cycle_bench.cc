@@ -72,6 +72,11 @@ class Planner {
     hub_msgs_msg_dds__DockCommand_ command{};
     hubrt::msgs::typed::assign(command.target_type, "dock");
     hubrt::msgs::typed::assign(command.target_name, "dock");
+    hubrt::msgs::typed::assign(command.action, "monitor");
+    // Registered, as hubrt's writers hold their instance: the planner's own writes then allocate
+    // nothing either (it runs in the measured process).
+    dds_instance_handle_t instance = 0;
+    dds_register_instance(writer_, &instance, &command);
     for (int i = 0; !stop_; ++i) {
       hubrt::msgs::typed::assign(command.action, changing_ && i % 2 == 1 ? "reset" : "monitor");
       dds_write(writer_, &command);
