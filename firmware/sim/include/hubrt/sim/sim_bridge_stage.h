@@ -4,6 +4,7 @@
 // the nodes step; the signals are published after periodic cycles.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,6 +66,8 @@ class SimBridgeStage final : public runtime::CycleStage {
     std::optional<hal::fake::FakeBackend::Wiring> wiring;
   };
   struct Entities {
+    // Something arrived on one of the three readers since the last look (their listener sets it).
+    std::shared_ptr<std::atomic<bool>> pending;
     dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
     dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
     dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
