@@ -3,12 +3,15 @@
 //                           thread repeating one command every 10 ms
 //   BM_HubCycle_Changing    the same, the planner alternating two commands (each takes effect)
 //   BM_RawStateWrite        the baseline: dds_write of the same DockState on the C API, same QoS,
-//                           its instance registered as hubrt's Writer does
+//                           its instance registered as hubrt's Writer did before its write pool
+//   BM_PooledStateWrite     hubrt's dds::Writer::write of the same DockState: Cyclone's serialiser
+//                           into the writer's pool of serdata, written with dds_writecdr
 // each with the State's subscriber (the argument) nowhere (0), in this process (1) or in another
 // process (2, hubrt_bench_raw_peer sink: the hub's real situation). Each iteration is paced at
 // 1 kHz (a real hub does not spin) and timed alone (manual time). Counters:
 //   allocs_per_cycle          heap allocations on the cycle's thread, per cycle (the design says 0)
 //   process_allocs_per_cycle  all threads, Cyclone's receive and delivery threads included
+#include <array>
 #include <atomic>
 #include <ctime>
 #include <optional>
@@ -18,12 +21,16 @@
 #include <fmt/format.h>
 
 #include "hubrt/assembly/hub_assembly.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/dds/topic.h"
+#include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
 #include "hubrt/test_support/test_domain.h"
 
 #include "alloc_counter.h"
 #include "bench_common.h"
 #include "dock.h"
+#include "dock_typed.h"
 #include "raw_dds.h"
 
 namespace hubrt::bench {
@@ -65,6 +72,11 @@ class Planner {
     hub_msgs_msg_dds__DockCommand_ command{};
     hubrt::msgs::typed::assign(command.target_type, "dock");
     hubrt::msgs::typed::assign(command.target_name, "dock");
+    hubrt::msgs::typed::assign(command.action, "monitor");
+    // Registered, as hubrt's writers hold their instance: the planner's own writes then allocate
+    // nothing either (it runs in the measured process).
+    dds_instance_handle_t instance = 0;
+    dds_register_instance(writer_, &instance, &command);
     for (int i = 0; !stop_; ++i) {
       hubrt::msgs::typed::assign(command.action, changing_ && i % 2 == 1 ? "reset" : "monitor");
       dds_write(writer_, &command);
@@ -193,6 +205,52 @@ void BM_HubCycle_Changing(benchmark::State& state) {
   hub_cycle(state, true);
 }
 
+// The DockState both write benchmarks write: a name, the echoed command and 4 slots.
+struct BenchDockState {
+  std::array<hub_msgs_msg_dds__DockSlot_, 4> slots{};
+  hub_msgs_msg_dds__DockState_ sample{};
+  BenchDockState() {
+    for (auto& slot : slots) hubrt::msgs::typed::assign(slot.name, "smart_tool");
+    hubrt::msgs::typed::assign(sample.name, "dock");
+    hubrt::msgs::typed::assign(sample.echo.target_type, "dock");
+    hubrt::msgs::typed::assign(sample.echo.target_name, "dock");
+    hubrt::msgs::typed::assign(sample.echo.action, "monitor");
+    sample.slots._buffer = slots.data();
+    sample.slots._length = sample.slots._maximum = 4;
+  }
+  BenchDockState(const BenchDockState&) = delete;
+  BenchDockState& operator=(const BenchDockState&) = delete;
+};
+
+void BM_PooledStateWrite(benchmark::State& state) {
+  auto domain = test_support::TestDomain::acquire();
+  if (!domain) return state.SkipWithError(domain.error().message.c_str());
+  auto participant = dds::Participant::create(domain->config(), "bench_pooled_writer");
+  if (!participant) return state.SkipWithError(participant.error().message.c_str());
+  auto topic = dds::Topic<hub_msgs_msg_dds__DockState_>::create(*participant, "/bench/state");
+  if (!topic) return state.SkipWithError(topic.error().message.c_str());
+  auto writer = dds::Writer<hub_msgs_msg_dds__DockState_>::create(*participant, *topic);
+  if (!writer) return state.SkipWithError(writer.error().message.c_str());
+  auto reader_participant = raw_participant(domain->domain_id());
+  if (!reader_participant) return state.SkipWithError(reader_participant.error().message.c_str());
+  {
+    Subscriber subscriber;
+    const std::string error =
+        subscriber.start(state.range(0), *reader_participant, *domain, "rt/bench/state");
+    if (!error.empty()) return state.SkipWithError(error.c_str());
+    if (state.range(0) != Subscriber::kNone && !writer->wait_for_readers(1, std::chrono::seconds(10)))
+      return state.SkipWithError("no matched reader");
+    state.SetLabel(Subscriber::label(state.range(0)));
+    BenchDockState dock;
+    paced(state, [&] {
+      dock.sample.header.seq++;
+      writer->write(dock.sample).ignore();
+    });
+    state.counters["pool_blocks"] = static_cast<double>(writer->pooled_blocks());
+  }
+  dds_delete(*reader_participant);
+}
+
 void BM_RawStateWrite(benchmark::State& state) {
   auto domain = test_support::TestDomain::acquire();
   if (!domain) return state.SkipWithError(domain.error().message.c_str());
@@ -211,15 +269,8 @@ void BM_RawStateWrite(benchmark::State& state) {
     if (state.range(0) != Subscriber::kNone && !wait_for_readers(*writer, 1, 10))
       return state.SkipWithError("no matched reader");
     state.SetLabel(Subscriber::label(state.range(0)));
-    std::array<hub_msgs_msg_dds__DockSlot_, 4> slots{};
-    for (auto& slot : slots) hubrt::msgs::typed::assign(slot.name, "smart_tool");
-    hub_msgs_msg_dds__DockState_ sample{};
-    hubrt::msgs::typed::assign(sample.name, "dock");
-    hubrt::msgs::typed::assign(sample.echo.target_type, "dock");
-    hubrt::msgs::typed::assign(sample.echo.target_name, "dock");
-    hubrt::msgs::typed::assign(sample.echo.action, "monitor");
-    sample.slots._buffer = slots.data();
-    sample.slots._length = sample.slots._maximum = 4;
+    BenchDockState dock;
+    hub_msgs_msg_dds__DockState_& sample = dock.sample;
     // As hubrt's Writer does: the keyless topic's one instance registered up front, so that Cyclone
     // does not create and collect it on every write.
     dds_instance_handle_t instance = 0;
@@ -237,6 +288,11 @@ void BM_RawStateWrite(benchmark::State& state) {
 constexpr std::int64_t kIterations = 5000;  // 5 s at 1 kHz
 
 BENCHMARK(BM_RawStateWrite)
+    ->DenseRange(0, 2)
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PooledStateWrite)
     ->DenseRange(0, 2)
     ->Iterations(kIterations)
     ->UseManualTime()

@@ -7,6 +7,8 @@
 #include "hubrt/dds/sample.h"
 
 #include "matched_count.h"
+#include "serdata_pool.h"
+#include "sertype_probe.h"
 
 namespace hubrt::dds {
 namespace {
@@ -48,8 +50,18 @@ Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, co
   UntypedWriter writer(std::move(matches), EntityHandle(handle), topic.dds_name());
   // A keyless topic has one instance. Registering it now keeps Cyclone's instance entry alive
   // for the writer's lifetime; otherwise, while no reader holds it, every write() creates and
-  // garbage-collects it again (measured: about 3 heap allocations per write).
+  // garbage-collects it again (measured: about 3 heap allocations per write). The write pool
+  // registers it through its own serdata (serdata_pool.cc, register_instance); without a pool,
+  // dds_register_instance does.
   if (topic.descriptor().m_nkeys == 0) {
+    // The write pool needs the topic's sertype (the writer's own: every hubrt QoS writes XCDR1,
+    // which Cyclone derives no other sertype for, ddsi_sertype_default.c
+    // sertype_default_derive_sertype). Without it the writer falls back to dds_write.
+    if (const ddsi_sertype* sertype =
+            detail::probe_topic_sertype(participant.handle(), topic.handle(), topic.descriptor())) {
+      writer.pool_.reset(detail::SerdataPool::create(sertype, writer.handle()));
+      return writer;
+    }
     const UntypedSample any_sample(topic.descriptor());
     dds_instance_handle_t instance = 0;
     const dds_return_t rc = dds_register_instance(writer.handle(), &instance, any_sample.data());
@@ -58,8 +70,26 @@ Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, co
   return writer;
 }
 
+void UntypedWriter::PoolRelease::operator()(detail::SerdataPool* pool) const noexcept {
+  pool->release();
+}
+
 Status UntypedWriter::write(const void* sample) noexcept {
-  return to_status(dds_write(handle_.get(), sample));
+  if (pool_ == nullptr || sample == nullptr) return to_status(dds_write(handle_.get(), sample));
+  ddsi_serdata* serdata = pool_->serialize(sample);
+  if (serdata == nullptr) return to_status(DDS_RETCODE_BAD_PARAMETER);  // as dds_write's from_sample
+  const dds_return_t rc = dds_writecdr(handle_.get(), serdata);
+  // dds_writecdr consumes the serdata's reference once it has locked the writer; when it cannot
+  // (a deleted or wrong handle: dds_write.c, dds_writer_lock) it returns with the reference ours.
+  if (rc == DDS_RETCODE_BAD_PARAMETER || rc == DDS_RETCODE_ALREADY_DELETED ||
+      rc == DDS_RETCODE_ILLEGAL_OPERATION) {
+    ddsi_serdata_unref(serdata);
+  }
+  return to_status(rc);
+}
+
+std::size_t UntypedWriter::pooled_blocks() const noexcept {
+  return pool_ == nullptr ? 0 : pool_->blocks();
 }
 
 Result<std::uint32_t> UntypedWriter::matched_readers() const noexcept {

@@ -1,8 +1,14 @@
 #include "alloc_counter.h"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+
+#include <sys/prctl.h>
+#include <sys/syscall.h>
 
 // GCC defines __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__; clang answers __has_feature.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -17,10 +23,21 @@ namespace {
 // Initial-exec TLS and a lock-free atomic: counting never allocates, which matters inside malloc.
 thread_local std::uint64_t t_count = 0;
 std::atomic<std::uint64_t> g_count{0};
+std::atomic<const char*> g_thread_name{nullptr};
+std::atomic<std::uint64_t> g_named_count{0};
+
+// The calling thread's name, straight from the kernel (no allocation, no interceptor).
+bool current_thread_named(const char* name) noexcept {
+  char current[16] = {};
+  if (syscall(SYS_prctl, PR_GET_NAME, current, 0, 0, 0) != 0) return false;
+  return std::strncmp(current, name, sizeof current) == 0;
+}
 
 inline void note() noexcept {
   ++t_count;
   g_count.fetch_add(1, std::memory_order_relaxed);
+  const char* name = g_thread_name.load(std::memory_order_relaxed);
+  if (name != nullptr && current_thread_named(name)) g_named_count.fetch_add(1, std::memory_order_relaxed);
 }
 }  // namespace
 
@@ -117,6 +134,12 @@ std::uint64_t thread_allocations() noexcept {
 }
 std::uint64_t process_allocations() noexcept {
   return g_count.load(std::memory_order_relaxed);
+}
+void count_allocations_of_thread_named(const char* name) noexcept {
+  g_thread_name.store(name, std::memory_order_relaxed);
+}
+std::uint64_t named_thread_allocations() noexcept {
+  return g_named_count.load(std::memory_order_relaxed);
 }
 
 }  // namespace hubrt::testing

@@ -16,6 +16,12 @@ namespace hubrt::testing {
 std::uint64_t thread_allocations() noexcept;
 // Allocations made so far by every thread of the process (DDS's own threads included).
 std::uint64_t process_allocations() noexcept;
+// From this call on, also counts the allocations of threads whose name (PR_SET_NAME, as
+// pthread_setname_np sets it) is `name` (at most 15 bytes; a string literal: kept, not copied),
+// e.g. Cyclone's timed-event thread "tev", to tell its periodic work from the rest of the process.
+void count_allocations_of_thread_named(const char* name) noexcept;
+// Allocations counted so far for the thread name given to count_allocations_of_thread_named.
+std::uint64_t named_thread_allocations() noexcept;
 // How this build counts: "sanitizer hooks" or "interposed malloc".
 const char* allocation_counting_method() noexcept;
 

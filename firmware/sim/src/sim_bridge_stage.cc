@@ -1,5 +1,8 @@
 #include "hubrt/sim/sim_bridge_stage.h"
 
+#include <atomic>
+#include <memory>
+
 #include <fmt/format.h>
 
 #include "hubrt/sim/sim_world.h"
@@ -26,26 +29,34 @@ Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Part
                                                                  const hal::BoardConfig& board,
                                                                  hal::fake::FakeBackend& fake,
                                                                  std::shared_ptr<spdlog::logger> log) {
+  // Set by Cyclone's data-available listener of the three readers (no blocking: an atomic store),
+  // so that a cycle with nothing received takes nothing: three empty dds_take calls per cycle were
+  // most of what the bridge cost once the signals were written only on change.
+  auto pending = std::make_shared<std::atomic<bool>>(true);
+  const auto note = [pending] { pending->store(true); };
   auto input_topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, kSimInputTopic);
   if (!input_topic) return std::move(input_topic).error();
-  auto input_reader = dds::Reader<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic);
+  auto input_reader = dds::Reader<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic,
+                                                                       dds::Qos::ros2_default(), note);
   if (!input_reader) return std::move(input_reader).error();
   auto fault_topic = dds::Topic<hub_msgs_msg_dds__SimFault_>::create(participant, kSimFaultTopic);
   if (!fault_topic) return std::move(fault_topic).error();
-  auto fault_reader = dds::Reader<hub_msgs_msg_dds__SimFault_>::create(participant, *fault_topic);
+  auto fault_reader = dds::Reader<hub_msgs_msg_dds__SimFault_>::create(participant, *fault_topic,
+                                                                       dds::Qos::ros2_default(), note);
   if (!fault_reader) return std::move(fault_reader).error();
   auto badge_topic = dds::Topic<hub_msgs_msg_dds__SimBadge_>::create(participant, kSimBadgeTopic);
   if (!badge_topic) return std::move(badge_topic).error();
-  auto badge_reader = dds::Reader<hub_msgs_msg_dds__SimBadge_>::create(participant, *badge_topic);
+  auto badge_reader = dds::Reader<hub_msgs_msg_dds__SimBadge_>::create(participant, *badge_topic,
+                                                                       dds::Qos::ros2_default(), note);
   if (!badge_reader) return std::move(badge_reader).error();
   auto signals_topic =
       dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(hub_name));
   if (!signals_topic) return std::move(signals_topic).error();
   auto writer = dds::Writer<hub_msgs_msg_dds__SimSignals_>::create(participant, *signals_topic);
   if (!writer) return std::move(writer).error();
-  Entities entities{std::move(*input_topic),   std::move(*input_reader), std::move(*fault_topic),
-                    std::move(*fault_reader),  std::move(*badge_topic),  std::move(*badge_reader),
-                    std::move(*signals_topic), std::move(*writer)};
+  Entities entities{std::move(pending),       std::move(*input_topic),   std::move(*input_reader),
+                    std::move(*fault_topic),  std::move(*fault_reader),  std::move(*badge_topic),
+                    std::move(*badge_reader), std::move(*signals_topic), std::move(*writer)};
   return std::unique_ptr<SimBridgeStage>(
       new SimBridgeStage(std::move(entities), std::move(hub_name), board, fake, std::move(log)));
 }
@@ -57,8 +68,11 @@ SimBridgeStage::SimBridgeStage(Entities entities, std::string hub_name, const ha
       board_(board),
       fake_(fake),
       log_(std::move(log)) {
-  for (const auto& input : board.inputs) signals_.push_back(Signal{input.config.signal, false});
-  for (const auto& output : board.outputs) signals_.push_back(Signal{output.config.signal, true});
+  for (const auto& input : board.inputs) signals_.push_back(Signal{input.config.signal, false, {}});
+  for (const auto& output : board.outputs) signals_.push_back(Signal{output.config.signal, true, {}});
+  for (auto& signal : signals_) {
+    if (const auto wired = fake_.wiring(signal.name); wired.is_ok()) signal.wiring = wired.value();
+  }
   if (board.simulation) {
     for (const auto& valve : board.simulation->valves) {
       if (fake_.valve(valve.output) != nullptr) valves_.push_back(valve.output);
@@ -101,14 +115,18 @@ void SimBridgeStage::apply_fault(const hub_msgs_msg_dds__SimFault_& fault, Time 
 }
 
 void SimBridgeStage::before_nodes(const Instant& now) noexcept {
-  for (int i = 0; i < 64; ++i) {  // bounded: a flood of sim inputs must not stall the cycle
+  // A sample arriving from here on sets the flag again: at worst one more look next cycle.
+  if (!dds_.pending->exchange(false)) return;
+  int i = 0;
+  for (i = 0; i < 64; ++i) {  // bounded: a flood of sim inputs must not stall the cycle
     const Result<bool> taken = dds_.input_reader.take_next(input_);
     if (!taken.is_ok() || !taken.value()) break;
     const auto& input = input_.get();
     if (input.hub == nullptr || input.signal == nullptr || hub_name_ != input.hub) continue;
     apply(input.signal, input.active);
   }
-  for (int i = 0; i < 16; ++i) {
+  bool more = i == 64;  // stopped at a bound: look again next cycle
+  for (i = 0; i < 16; ++i) {
     const Result<bool> taken = dds_.badge_reader.take_next(badge_);
     if (!taken.is_ok() || !taken.value()) break;
     const auto& badge = badge_.get();
@@ -121,7 +139,8 @@ void SimBridgeStage::before_nodes(const Instant& now) noexcept {
       log_->info("sim: badge of {} byte(s) shown to {}", std::string_view(badge.text).size(), badge.reader);
     }
   }
-  for (int i = 0; i < 16; ++i) {
+  more |= i == 16;
+  for (i = 0; i < 16; ++i) {
     const Result<bool> taken = dds_.fault_reader.take_next(fault_);
     if (!taken.is_ok() || !taken.value()) break;
     const auto& fault = fault_.get();
@@ -129,25 +148,52 @@ void SimBridgeStage::before_nodes(const Instant& now) noexcept {
       continue;
     apply_fault(fault, now.mono);
   }
+  if (more || i == 16) dds_.pending->store(true);
+}
+
+bool SimBridgeStage::read_signals(const Instant& now) noexcept {
+  bool changed = false;
+  for (std::size_t i = 0; i < signals_.size(); ++i) {
+    const Signal& signal = signals_[i];
+    bool active = false;
+    if (signal.wiring) {
+      const Result<bool> high = signal.wiring->chip->level(signal.wiring->line);
+      active = high.is_ok() && high.value() != (signal.wiring->polarity == hal::Polarity::kActiveLow);
+    } else {
+      const Result<bool> level = fake_.active(signal.name);
+      active = level.is_ok() && level.value();
+    }
+    changed |= wire_signals_[i].active != active;
+    wire_signals_[i].active = active;
+  }
+  for (std::size_t i = 0; i < valves_.size(); ++i) {
+    const bool energised = fake_.valve(valves_[i])->in_energised_position();
+    changed |= wire_valves_[i].energised != energised;
+    wire_valves_[i].energised = energised;
+  }
+  for (std::size_t i = 0; i < lifts_.size(); ++i) {
+    const auto position = static_cast<float>(fake_.lift_drive(lifts_[i])->position_mm(now.mono));
+    changed |= wire_lifts_[i].position_mm != position;
+    wire_lifts_[i].position_mm = position;
+  }
+  return changed;
+}
+
+void SimBridgeStage::write_signals(const Instant& now) noexcept {
+  dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced soon
+  last_written_ = now.mono;
 }
 
 void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
   if (!publish_all) return;
-  for (std::size_t i = 0; i < signals_.size(); ++i) {
-    const Result<bool> level = fake_.active(signals_[i].name);
-    wire_signals_[i].active = level.is_ok() && level.value();
-  }
-  for (std::size_t i = 0; i < valves_.size(); ++i) {
-    wire_valves_[i].energised = fake_.valve(valves_[i])->in_energised_position();
-  }
-  for (std::size_t i = 0; i < lifts_.size(); ++i) {
-    wire_lifts_[i].position_mm = static_cast<float>(fake_.lift_drive(lifts_[i])->position_mm(now.mono));
-  }
-  dds_.signals_writer.write(wire_).ignore();  // observation only; a lost sample is replaced next cycle
+  const bool changed = read_signals(now);
+  const bool due = !last_written_ || now.mono - *last_written_ >= kSimSignalsKeepAlive;
+  if (changed || due || dds_.signals_writer.take_new_readers() > 0) write_signals(now);
 }
 
 void SimBridgeStage::after_safe_state(const Instant& now) noexcept {
-  after_nodes(now, /*publish_all=*/true, /*took_effect=*/false);
+  read_signals(now);
+  write_signals(now);  // always: the watchers see the safe outputs
   // The writer is reliable, but Cyclone's writer linger "is currently not applied when Cyclone DDS
   // is requested to terminate" (docs/manual/config.rst, Lingering writers): wait for the readers'
   // acknowledgements (dds_wait_for_acks, dds.h) before hubd deletes its participant. Bounded, and

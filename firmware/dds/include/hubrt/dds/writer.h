@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,13 +19,18 @@
 
 namespace hubrt::dds {
 
+namespace detail {
+class SerdataPool;
+}  // namespace detail
+
 // Called on a Cyclone thread (discovery) when a new reader matched the writer. Same contract as
 // DataAvailableCallback: no blocking, no throwing, no deleting the writer; meant to wake a cycle.
 using ReaderMatchedCallback = std::function<void()>;
 
 // A writer for a type known by its descriptor only. Move-only; dds_delete() on destruction.
 // Thread-safety: write(), matched_readers() and take_new_readers() may be called from any thread
-// (Cyclone serialises; the count is atomic); create/move/destroy must not race with them.
+// (Cyclone serialises; a pool block belongs to one write until Cyclone has it; the count is
+// atomic); create/move/destroy must not race with them.
 class UntypedWriter {
  public:
   // For a keyless topic (all ROS 2 messages) the single instance is registered at once, so that
@@ -38,19 +44,24 @@ class UntypedWriter {
                                         const Qos& qos = Qos::ros2_default(),
                                         ReaderMatchedCallback on_reader_matched = {});
 
-  // Serialises and sends `sample` (desc->m_size bytes of the topic's type). Allocates nothing
-  // on our side; Cyclone 0.10 does, internally: 2 allocations per write of a sample that
-  // serialises to more than 256 bytes (measured with a hub State: a malloc and a realloc of the
-  // serialised sample, which its freelist only keeps up to 256 bytes — ddsi_serdata_default.c),
-  // none for smaller samples in steady state with matched readers or with nobody listening, and
-  // more when a reliable reader lags and unacknowledged samples pile up. Measured by
-  // firmware/dds/test/alloc_test.cc and hubs/rsp_ecu/test/rsp_dds_cycle_alloc_test.cc.
-  // Errors: kTimeout if a reliable write stayed blocked (never with keep-last); kInvalidArgument
-  // for a deleted writer or a sample that does not serialise (e.g. null string).
+  // Serialises and sends `sample` (desc->m_size bytes of the topic's type). For a keyless topic
+  // (every ROS 2 message) the sample is serialised by Cyclone's own serialiser into a block of this
+  // writer's pool and handed over with dds_writecdr (detail::SerdataPool, src/serdata_pool.cc): no
+  // heap allocation in steady state, where Cyclone 0.10's dds_write allocates twice per sample
+  // over 256 serialised bytes (ddsi_serdata_default.c). The pool grows by a block only while
+  // Cyclone holds more samples than ever before (unacknowledged ones of a lagging reliable reader,
+  // up to the history depth) and a block only for a sample larger than it has held. Keyed topics
+  // and a topic whose sertype could not be found at creation use dds_write. Same bytes on the wire
+  // either way (firmware/dds/test/pooled_write_test.cc, tests/dds_write). Errors: kTimeout if a
+  // reliable write stayed blocked (never with keep-last); kInvalidArgument for a deleted writer or
+  // a sample that does not serialise (e.g. an enum out of range).
   Status write(const void* sample) noexcept;
 
   // Number of readers currently matched. Errors: Cyclone's code (deleted writer).
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept;
+
+  // Blocks in the write pool (0 when the writer uses dds_write); for tests and benchmarks.
+  [[nodiscard]] std::size_t pooled_blocks() const noexcept;
 
   // Readers that matched since the last call (0 if none), and resets the count. A reader that
   // matches is reachable from then on: a sample written after this returned a non-zero count
@@ -83,12 +94,20 @@ class UntypedWriter {
     ReaderMatchedCallback callback;
   };
 
+  // Drops the writer's reference to its pool (detail::SerdataPool::release).
+  struct PoolRelease {
+    void operator()(detail::SerdataPool* pool) const noexcept;
+  };
+
   UntypedWriter(std::unique_ptr<MatchWatch> matches, EntityHandle handle, std::string topic_name) noexcept
       : matches_(std::move(matches)), handle_(std::move(handle)), topic_name_(std::move(topic_name)) {}
 
   // Declared before handle_ so that it is destroyed after the writer it is the listener of.
   std::unique_ptr<MatchWatch> matches_;
   EntityHandle handle_;
+  // Declared after handle_ so that it is released while the writer still exists (it drops its
+  // instance registration then); serdata Cyclone still holds keep the pool itself alive.
+  std::unique_ptr<detail::SerdataPool, PoolRelease> pool_;
   std::string topic_name_;
 };
 
@@ -112,6 +131,7 @@ class Writer {
   Expected<void> wait_for_readers(std::uint32_t count, Duration timeout) const {
     return writer_.wait_for_readers(count, timeout);
   }
+  [[nodiscard]] std::size_t pooled_blocks() const noexcept { return writer_.pooled_blocks(); }
   [[nodiscard]] const UntypedWriter& untyped() const noexcept { return writer_; }
   [[nodiscard]] dds_entity_t handle() const noexcept { return writer_.handle(); }
 

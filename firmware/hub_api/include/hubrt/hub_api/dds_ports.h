@@ -3,6 +3,7 @@
 // (Cyclone grows a taken sample's strings only when a longer one arrives).
 #pragma once
 
+#include <cstdint>
 #include <utility>
 
 #include "hubrt/dds/reader.h"
@@ -11,6 +12,15 @@
 #include "hubrt/runtime/ports.h"
 
 namespace hubrt::hub_api {
+
+// History depth of a node's or hub's command reader. One: the node takes every command as soon
+// as it arrives (the reader wakes the cycle thread for a command step) and the last command wins
+// anyway, and with one sample per instance Cyclone reuses the instance's own sample slot for
+// every arrival, where a deeper history mallocs a slot for each command that arrives while one is
+// still unread (Cyclone 0.10.2 dds_rhc_default.c: alloc_sample, and add_sample replaces the
+// oldest once the history is full). What a burst changes: of two commands arriving between two
+// steps only the later is seen (and judged).
+inline constexpr std::int32_t kCommandHistoryDepth = 1;
 
 // Thread-safety: next() on the cycle thread only.
 template <dds::TopicType Command>

@@ -227,7 +227,8 @@ class NodeWiring {
         dds::Topic<HubCommand>::create(context.participant, hub_command_topic(ns, context.config.name));
     if (!command_topic) return std::move(command_topic).error();
     auto reader = dds::Reader<HubCommand>::create(context.participant, *command_topic,
-                                                  dds::Qos::ros2_default(), [waker] { waker.wake(); });
+                                                  dds::Qos::ros2_default(kCommandHistoryDepth),
+                                                  [waker] { waker.wake(); });
     if (!reader) return std::move(reader).error();
     auto state_topic =
         dds::Topic<HubState>::create(context.participant, hub_state_topic(ns, context.config.name));

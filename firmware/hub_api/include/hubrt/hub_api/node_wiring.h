@@ -50,8 +50,9 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   auto command_topic = dds::Topic<Command>::create(
       context.participant, node_command_topic(context.config.ros_namespace, Logic::kType));
   if (!command_topic) return fail(command_topic.error());
-  auto reader = dds::Reader<Command>::create(context.participant, *command_topic, dds::Qos::ros2_default(),
-                                             [waker] { waker.wake(); });
+  auto reader =
+      dds::Reader<Command>::create(context.participant, *command_topic,
+                                   dds::Qos::ros2_default(kCommandHistoryDepth), [waker] { waker.wake(); });
   if (!reader) return fail(reader.error());
   auto state_topic = dds::Topic<State>::create(
       context.participant, node_state_topic(context.config.ros_namespace, context.config.name, node.name));

@@ -4,7 +4,9 @@
 // the nodes step; the signals are published after periodic cycles.
 #pragma once
 
+#include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +31,16 @@ inline constexpr std::string_view kSimInputTopic = "/sim/input";
 inline constexpr std::string_view kSimBadgeTopic = "/sim/badge";
 inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
+// The signals are published after a periodic cycle when one changed, when a new reader matched,
+// and otherwise at least this often (the station model takes a hub silent for a second as gone:
+// station_bridge.h, kSilentAfter). Unchanged signals are not written every cycle: at 1 kHz that
+// was a second DDS write per cycle beside the State.
+inline constexpr Duration kSimSignalsKeepAlive = std::chrono::milliseconds(100);
 
 class SimBridgeStage final : public runtime::CycleStage {
  public:
-  // Publishes every input and output signal of `board`, its valves and its lift drives.
+  // Publishes every input and output signal of `board`, its valves and its lift drives (when they
+  // change; see kSimSignalsKeepAlive).
   // Errors: the DDS entities.
   static Expected<std::unique_ptr<SimBridgeStage>> create(const dds::Participant& participant,
                                                           std::string hub_name, const hal::BoardConfig& board,
@@ -52,8 +60,14 @@ class SimBridgeStage final : public runtime::CycleStage {
   struct Signal {
     std::string name;
     bool output = false;
+    // Resolved once (board lookup by name, chip by name): reading it by name every cycle was most
+    // of a simulated hub's cycle (callgrind). Chips are never removed from the fake GPIO, so the
+    // pointer stays valid; unresolved (chip missing at start) reads by name.
+    std::optional<hal::fake::FakeBackend::Wiring> wiring;
   };
   struct Entities {
+    // Something arrived on one of the three readers since the last look (their listener sets it).
+    std::shared_ptr<std::atomic<bool>> pending;
     dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
     dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
     dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
@@ -66,6 +80,9 @@ class SimBridgeStage final : public runtime::CycleStage {
   SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,
                  hal::fake::FakeBackend& fake, std::shared_ptr<spdlog::logger> log);
   void apply_fault(const hub_msgs_msg_dds__SimFault_& fault, Time now) noexcept;
+  // Reads the signals into the wire sample; true when one differs from what was last written.
+  bool read_signals(const Instant& now) noexcept;
+  void write_signals(const Instant& now) noexcept;
 
   Entities dds_;
   std::string hub_name_;
@@ -75,6 +92,7 @@ class SimBridgeStage final : public runtime::CycleStage {
   std::vector<std::string> lifts_;   // Modbus devices with a lift drive simulator
   hal::fake::FakeBackend& fake_;
   std::shared_ptr<spdlog::logger> log_;
+  std::optional<Time> last_written_;  // monotonic time of the last signals sample
   dds::Sample<hub_msgs_msg_dds__SimInput_> input_;
   dds::Sample<hub_msgs_msg_dds__SimFault_> fault_;
   dds::Sample<hub_msgs_msg_dds__SimBadge_> badge_;
