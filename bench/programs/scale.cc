@@ -4,6 +4,7 @@
 //   discovery   spawn of the first hub -> a waiting planner matched every hub's State writer
 //   all heard   ... -> that planner received a State from every hub
 //   after last  spawn of the last hub -> that planner received a State from every hub
+//   start CPU   CPU time the hubs spent until then (start-up and discovery), all hubs together
 //   late planner  a planner that joins when every hub is up: its start -> a State from every hub
 //   CPU, RSS    of all hubs together over a window, and per hub
 //   conforming  `hubctl conformance --parallel` against all of them, with the default thresholds
@@ -161,6 +162,12 @@ Expected<nlohmann::ordered_json> measure(int hubs, double rate, double cpu_windo
   }
   const double last_spawned = mono_now() - t0;
   const auto [discovered, heard] = wait_for_all(*planner, t0);
+  // What starting and discovering cost the hubs: with N processes on 2 cores the wall time from
+  // the last start cannot be less than this CPU time / 2.
+  double start_cpu_s = 0;
+  for (const auto& child : children) {
+    if (auto sample = read_proc(child.pid())) start_cpu_s += sample->cpu_s;
+  }
   dds_delete(planner->participant);  // from here on only the hubs, the late planners and hubctl
   if (heard < 0)
     return make_error(ErrorCode::kTimeout,
@@ -229,6 +236,7 @@ Expected<nlohmann::ordered_json> measure(int hubs, double rate, double cpu_windo
   out["all_heard_ms"] = heard * 1e3;
   out["last_spawned_ms"] = last_spawned * 1e3;
   out["heard_after_last_spawn_ms"] = (heard - last_spawned) * 1e3;
+  out["start_cpu_s"] = start_cpu_s;
   out["late_planner"] = *late;
   out["cpu_total_pct"] = cpu;
   out["cpu_per_hub_pct"] = cpu / hubs;
