@@ -13,6 +13,7 @@ from collections import defaultdict
 
 from report_echo import echo_section  # the command -> echo section (issue 16 point 8)
 from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
+from report_scale import scale_section  # many hubs on one host (issue 16 point 6)
 from report_security import security_section  # bench/report_security.py, next to this file
 
 # DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
@@ -265,42 +266,6 @@ def startup_section(report, startup):
         report.aim(f"first State within 50 ms of start ({rate:g} Hz)",
                    f"p50 {ms(h['p50'], 1)}, max {ms(h['max'], 1)} (raw writer p50 {ms(r['p50'], 1)})",
                    h["p50"] <= 50, why)
-
-
-def scale_section(report, scale):
-    if scale is None or not scale.get("sizes"):
-        report.aim("32 hubs on one host all conforming", "not measured", False, "the scale run did not complete.")
-        return
-    lines = [
-        "## Many hubs on one host",
-        "",
-        "`hubrt_bench_scale`: N Dock ECU hubs, each with its own name and ROS namespace, at "
-        f"{scale['sizes'][0]['rate_hz']:g} Hz. Discovery: from spawning the first to a waiting subscriber "
-        "having matched every State writer (and having received a State from each). CPU and RSS over a "
-        "window, all hubs. Conformance: `hubctl conformance --parallel` against all of them at once with the "
-        "default thresholds (short phases). The loopback configuration's MaxAutoParticipantIndex of 32 allows "
-        f"33 participants per host; N hubs + this program + hubctl need more, so this run uses "
-        f"{scale['max_auto_participant_index']}.",
-        "",
-        "| hubs | discovery | all heard | CPU total | CPU per hub | RSS per hub | conforming | failed checks |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
-    for s in scale["sizes"]:
-        failed = ", ".join(f"{k} x{v}" for k, v in sorted(s["failed_checks"].items())) or "none"
-        lines.append(f"| {s['hubs']} | {ms(s['discovery_ms'], 0)} | {ms(s['all_heard_ms'], 0)} | "
-                     f"{s['cpu_total_pct']:.1f} % | {s['cpu_per_hub_pct']:.2f} % | {s['rss_per_hub_mb']:.1f} MB | "
-                     f"{s['conforming']}/{s['hubs']} | {failed} |")
-    report.sections.append("\n".join(lines) + "\n")
-    largest = scale["sizes"][-1]
-    ok = largest["hubs"] >= 32 and largest["conforming"] == largest["hubs"]
-    failed = ", ".join(f"{k} x{v}" for k, v in sorted(largest["failed_checks"].items())) or "none"
-    report.aim("32 hubs on one host all conforming", f"{largest['conforming']}/{largest['hubs']} at "
-               f"{largest['hubs']} hubs", ok,
-               f"with {largest['hubs']} hubs {largest['conforming']} passed; failed checks: {failed}. 32 hub "
-               "processes, the suite's 32 parallel sessions and every other job share 2 cores: the checks "
-               "that fail are the timing bounds written for an unloaded host (jitter, echo latency), while the "
-               "behaviour checks (fresh_msg, t_plus, watchdog, no stale re-apply, reset, sequence) are what to "
-               "look at for correctness." if largest["hubs"] >= 32 else "the 32-hub size did not run.")
 
 
 def picture(results, path):

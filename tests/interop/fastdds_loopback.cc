@@ -16,8 +16,9 @@ using eprosima::fastrtps::rtps::Locator_t;
 
 namespace {
 
-// Cyclone's loopback test configuration (dds::loopback_config_xml) lets 32 participants take an
-// index on one host; Fast DDS probes the initial peer at the ports of this many indices.
+// Fast DDS probes the initial peer at the ports of this many participant indices: a test's
+// private domain holds a few participants (Cyclone's loopback configuration,
+// dds::loopback_config_xml, would admit kLoopbackParticipantsPerHost).
 constexpr std::uint32_t kPeerIndices = 32;
 
 }  // namespace

@@ -21,8 +21,8 @@ namespace hubrt::interop {
 // The participant QoS: Fast DDS's own defaults (get_default_participant_qos()), then
 //  - only a UDPv4 transport whitelisted to 127.0.0.1 (no shared memory: Cyclone does not speak
 //    Fast DDS's SHM transport, and no other interface: the test stays on loopback);
-//  - 127.0.0.1 as the unicast initial peer, probed for participant indices 0..31 (Cyclone's
-//    loopback config has MaxAutoParticipantIndex 32; Fast DDS's default range is only 4).
+//  - 127.0.0.1 as the unicast initial peer, probed for participant indices 0..31 (a test's
+//    domain holds far fewer participants; Fast DDS's default range is only 4).
 // Which settings are needed and why: docs/interop.md.
 eprosima::fastdds::dds::DomainParticipantQos loopback_participant_qos(const std::string& name);
 

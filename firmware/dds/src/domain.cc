@@ -20,6 +20,10 @@ std::string max_sample_size_element() {
   return "<Internal><MaxSampleSize>" + std::to_string(kMaxSampleSizeBytes) + " B</MaxSampleSize></Internal>";
 }
 
+std::string max_auto_participant_index_element(int participants) {
+  return "<MaxAutoParticipantIndex>" + std::to_string(participants) + "</MaxAutoParticipantIndex>";
+}
+
 }  // namespace
 
 std::string resource_bounds_elements_xml() {
@@ -33,13 +37,24 @@ std::string resource_bounds_elements_xml() {
 }
 
 std::string loopback_config_xml() {
+  // Cyclone 0.10.2 admits MaxAutoParticipantIndex participants per host, not one more: rtps_init
+  // (src/core/ddsi/src/q_init.c) tries indices 0..max but refuses the last ("Failed to find a free
+  // participant index": its loop counter is one past the index found), and the unicast peer list
+  // covers indices 0..max-1 (src/core/ddsi/src/q_addrset.c, add_addresses_to_addrset_1). Each
+  // participant sends its SPDP to every one of those ports at start and every SPDPInterval (30 s).
+  // Port numbers above 65535 are not refused but wrap in the socket address (ddsi_ipaddr.c), so
+  // domain 232, whose ports reach 65535 at index 62, gets its own, smaller bound: a second source,
+  // as a Domain element with a numeric id must be the first data of its source and is skipped for
+  // other domains (src/core/ddsi/src/ddsi_config.c, uf_domainId).
   return "<CycloneDDS><Domain id=\"any\">"
          "<General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
          "<AllowMulticast>false</AllowMulticast></General>"
-         "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
-         "<MaxAutoParticipantIndex>32</MaxAutoParticipantIndex>"
-         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>" +
-         resource_bounds_elements_xml() + "</Domain></CycloneDDS>";
+         "<Discovery><ParticipantIndex>auto</ParticipantIndex>" +
+         max_auto_participant_index_element(kLoopbackParticipantsPerHost) +
+         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>" + resource_bounds_elements_xml() +
+         "</Domain></CycloneDDS>,<CycloneDDS><Domain id=\"" + std::to_string(kMaxDomainId) +
+         "\"><Discovery>" + max_auto_participant_index_element(kLoopbackParticipantsInLastDomain) +
+         "</Discovery></Domain></CycloneDDS>";
 }
 
 std::string sample_bounds_config_xml() {

@@ -12,32 +12,63 @@
 namespace hubrt::dds {
 namespace {
 
-constexpr std::size_t kBatch = 64;
 constexpr std::uint32_t kAlive = DDS_ANY_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ALIVE_INSTANCE_STATE;
+constexpr std::uint32_t kNewAlive = DDS_NOT_READ_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ALIVE_INSTANCE_STATE;
 constexpr std::uint32_t kGone = DDS_ANY_SAMPLE_STATE | DDS_ANY_VIEW_STATE |
                                 DDS_NOT_ALIVE_DISPOSED_INSTANCE_STATE |
                                 DDS_NOT_ALIVE_NO_WRITERS_INSTANCE_STATE;
 
+// Every read and take below lends Cyclone's own sample memory (the first buffer entry null), and
+// the buffer handed over must hold as many entries as the largest loan the reader ever made:
+// Cyclone 0.10.2 (src/core/ddsc/src/dds_read.c, dds_read_impl) keeps one loan per reader and,
+// when it is at least as large as the request, fills in one pointer per sample of the whole loan
+// ("ddsi_sertype_realloc_samples (buf, ..., rd->m_loan, rd->m_loan_size, rd->m_loan_size)"), not
+// `maxs` of them. So a reader's buffer size only grows (`capacity`, one per reader): once a
+// station had more than 64 writers, a buffer of 64 after a loan of 128 was written past its end
+// (32 hubs on one host corrupted every hub's heap).
+using LoanBuffer = std::vector<void*>;
+
 // Drops the instances of participants and writers that went away, so the readers' caches do not
-// grow with every hubctl run over months of uptime.
-bool purge_gone(dds_entity_t reader) noexcept {
+// grow with every hubctl run over months of uptime. Returns how many, or -1 when the reader is gone.
+int purge_gone(dds_entity_t reader, std::size_t capacity) {
+  int gone = 0;
   for (;;) {
-    std::array<void*, kBatch> samples{};
-    std::array<dds_sample_info_t, kBatch> infos{};
-    const dds_return_t n = dds_take_mask(reader, samples.data(), infos.data(), kBatch, kBatch, kGone);
-    if (n < 0) return false;
+    LoanBuffer samples(capacity, nullptr);
+    std::vector<dds_sample_info_t> infos(capacity);
+    const dds_return_t n = dds_take_mask(reader, samples.data(), infos.data(), capacity,
+                                         static_cast<std::uint32_t>(capacity), kGone);
+    if (n < 0) return -1;
     if (n > 0) (void)dds_return_loan(reader, samples.data(), n);
-    if (static_cast<std::size_t>(n) < kBatch) return true;
+    gone += n;
+    if (static_cast<std::size_t>(n) < capacity) return gone;
+  }
+}
+
+// Reads the samples not read before (they count as read from then on) and counts those for which
+// `counts` holds, or -1 when the reader is gone.
+template <class Sample, class Counts>
+int read_new(dds_entity_t reader, std::size_t capacity, Counts&& counts) {
+  int counted = 0;
+  for (;;) {
+    LoanBuffer samples(capacity, nullptr);
+    std::vector<dds_sample_info_t> infos(capacity);
+    const dds_return_t n = dds_read_mask(reader, samples.data(), infos.data(), capacity,
+                                         static_cast<std::uint32_t>(capacity), kNewAlive);
+    if (n < 0) return -1;
+    for (dds_return_t i = 0; i < n; ++i) {
+      if (infos[i].valid_data && counts(*static_cast<const Sample*>(samples[i]))) ++counted;
+    }
+    if (n > 0) (void)dds_return_loan(reader, samples.data(), n);
+    if (static_cast<std::size_t>(n) < capacity) return counted;
   }
 }
 
 // Reads (keeps in the cache) every alive instance, handing each valid sample to `visit`.
 template <class Sample, class Visit>
-bool read_alive(dds_entity_t reader, Visit&& visit) {
+bool read_alive(dds_entity_t reader, std::size_t& capacity, Visit&& visit) {
   // A builtin reader keeps one sample per instance; read them in one loan large enough for all.
-  std::size_t capacity = kBatch;
   for (;;) {
-    std::vector<void*> samples(capacity, nullptr);  // null entries: Cyclone loans its own memory
+    LoanBuffer samples(capacity, nullptr);  // null entries: Cyclone loans its own memory
     std::vector<dds_sample_info_t> infos(capacity);
     const dds_return_t n = dds_read_mask(reader, samples.data(), infos.data(), capacity,
                                          static_cast<std::uint32_t>(capacity), kAlive);
@@ -133,17 +164,38 @@ std::vector<WatchedWriter> WriterWatch::current() const {
 void WriterWatch::refresh() noexcept {
   try {
     const std::lock_guard lock(refresh_mutex_);
-    if (!purge_gone(participants_.get()) || !purge_gone(publications_.get())) return;  // being deleted
+    const int gone_participants = purge_gone(participants_.get(), participants_capacity_);
+    const int gone_writers = purge_gone(publications_.get(), publications_capacity_);
+    const int new_participants =
+        read_new<dds_builtintopic_participant_t>(participants_.get(), participants_capacity_,
+                                                 [](const dds_builtintopic_participant_t&) { return true; });
+    const int new_watched = read_new<dds_builtintopic_endpoint_t>(
+        publications_.get(), publications_capacity_, [this](const dds_builtintopic_endpoint_t& e) {
+          return Guid::from(e.participant_key) != self_ && e.topic_name != nullptr && filter_(e.topic_name);
+        });
+    if (gone_participants < 0 || gone_writers < 0 || new_participants < 0 || new_watched < 0)
+      return;  // being deleted
+    {
+      // Each discovery event used to re-read every writer and participant on the domain: with
+      // N hubs on a host each hub did that N * (writers per hub) times while they started, O(N^2)
+      // sample copies per hub (Cyclone copies a builtin sample's QoS into each loan), which on 2
+      // cores stretched 64 hubs' discovery to tens of seconds. A re-read is needed only when a
+      // watched writer came, a writer went, or a participant came or went while watched writers
+      // exist (its process details).
+      const std::lock_guard current_lock(current_mutex_);
+      const bool process_changed = !current_.empty() && (gone_participants > 0 || new_participants > 0);
+      if (reported_ && new_watched == 0 && gone_writers == 0 && !process_changed) return;
+    }
     std::map<Guid, ProcessInfo> processes;
     const bool read_participants = read_alive<dds_builtintopic_participant_t>(
-        participants_.get(), [&](const dds_builtintopic_participant_t& p) {
+        participants_.get(), participants_capacity_, [&](const dds_builtintopic_participant_t& p) {
           processes[Guid::from(p.key)] = ProcessInfo{property(p.qos, "__Hostname"), property(p.qos, "__Pid"),
                                                      property(p.qos, "__ProcessName"), user_data(p.qos)};
         });
     if (!read_participants) return;
     std::vector<WatchedWriter> writers;
     const bool read_publications = read_alive<dds_builtintopic_endpoint_t>(
-        publications_.get(), [&](const dds_builtintopic_endpoint_t& e) {
+        publications_.get(), publications_capacity_, [&](const dds_builtintopic_endpoint_t& e) {
           const Guid participant = Guid::from(e.participant_key);
           if (participant == self_ || e.topic_name == nullptr || !filter_(e.topic_name)) return;
           WatchedWriter writer;

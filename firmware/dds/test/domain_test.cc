@@ -2,6 +2,7 @@
 
 #include <stdlib.h>
 
+#include <dds/dds.h>
 #include <gtest/gtest.h>
 
 namespace hubrt::dds {
@@ -42,13 +43,31 @@ TEST_F(DomainFromEnvironment, RejectsNonNumbersAndIdsOutOfRange) {
   }
 }
 
-TEST(LoopbackConfig, PinsLoopbackWithoutMulticastAnd32Participants) {
+// 64 hubs, hubctl and a planner on one host (tests/support/test/loopback_capacity_test.cc starts
+// the 65th and 66th); domain 232 alone is bounded by its port numbers (7400 + 250 * 232 + 11 +
+// 2 * 62 = 65535).
+TEST(LoopbackConfig, PinsLoopbackWithoutMulticastAndAStationOfParticipants) {
   const std::string xml = loopback_config_xml();
   EXPECT_NE(xml.find("<NetworkInterface name=\"lo\"/>"), std::string::npos);
   EXPECT_NE(xml.find("<AllowMulticast>false</AllowMulticast>"), std::string::npos);
   EXPECT_NE(xml.find("<ParticipantIndex>auto</ParticipantIndex>"), std::string::npos);
-  EXPECT_NE(xml.find("<MaxAutoParticipantIndex>32</MaxAutoParticipantIndex>"), std::string::npos);
+  EXPECT_GE(kLoopbackParticipantsPerHost, 66);
+  EXPECT_NE(xml.find("<MaxAutoParticipantIndex>100</MaxAutoParticipantIndex>"), std::string::npos);
   EXPECT_NE(xml.find("<Peer address=\"127.0.0.1\"/>"), std::string::npos);
+  EXPECT_EQ(7400 + 250 * kMaxDomainId + 11 + 2 * (kLoopbackParticipantsInLastDomain - 1), 65535u);
+  EXPECT_NE(xml.find(",<CycloneDDS><Domain id=\"232\"><Discovery><MaxAutoParticipantIndex>63"
+                     "</MaxAutoParticipantIndex></Discovery></Domain></CycloneDDS>"),
+            std::string::npos);
+}
+
+// Cyclone accepts the two sources in the last domain too (a Domain element with a numeric id is
+// only valid as the first data of its source), and the smaller bound applies there.
+TEST(LoopbackConfig, CycloneTakesItInTheLastDomain) {
+  const dds_entity_t domain = dds_create_domain(kMaxDomainId, loopback_config_xml().c_str());
+  ASSERT_GE(domain, 0) << dds_strretcode(domain);
+  const dds_entity_t participant = dds_create_participant(kMaxDomainId, nullptr, nullptr);
+  EXPECT_GE(participant, 0) << dds_strretcode(participant);
+  EXPECT_EQ(dds_delete(domain), DDS_RETCODE_OK);
 }
 
 // The receive buffer bounds the saw-tooth of RSS that discovery and commands cause (docs/soak.md:

@@ -79,5 +79,38 @@ TEST_F(DdsTest, WriterWatchReportsOtherParticipantsWritersOfWatchedTopicsWithThe
   EXPECT_GE(reports, 3);
 }
 
+// More writers than one 64-sample loan holds (32 hubs on one host have ~200): the watch reads them
+// all, and keeps reading and purging after its loans grew. Before the fix the next refresh after a
+// grown loan wrote past the end of its 64-entry buffer (writer_watch.cc, LoanBuffer; the
+// AddressSanitizer build reports it, a release hubd corrupted its heap).
+TEST_F(DdsTest, WriterWatchFollowsMoreWritersThanOneLoanHolds) {
+  constexpr std::size_t kWriters = 150;  // two doublings of the 64-entry first loan
+  auto watch = WriterWatch::start(
+      participant(), [](std::string_view topic) { return topic.starts_with("rt/hubrt_test/many"); },
+      [](const std::vector<WatchedWriter>&) {});
+  ASSERT_TRUE(watch) << watch.error().message;
+  auto other = Participant::create(config(), "other");
+  ASSERT_TRUE(other) << other.error().message;
+  auto topic = Topic<Ping>::create(*other, "/hubrt_test/many");
+  ASSERT_TRUE(topic);
+  std::vector<Writer<Ping>> writers;
+  for (std::size_t i = 0; i < kWriters; ++i) {
+    auto writer = Writer<Ping>::create(*other, *topic);
+    ASSERT_TRUE(writer) << writer.error().message;
+    writers.push_back(std::move(*writer));
+  }
+  ASSERT_TRUE(wait_until(**watch, [&](const auto& list) { return list.size() == kWriters; }))
+      << (*watch)->current().size() << " of " << kWriters;
+
+  // One more, then all gone: refreshes after the loans grew, reading and taking.
+  auto last = Writer<Ping>::create(*other, *topic);
+  ASSERT_TRUE(last);
+  EXPECT_TRUE(wait_until(**watch, [&](const auto& list) { return list.size() == kWriters + 1; }))
+      << (*watch)->current().size();
+  writers.clear();
+  EXPECT_TRUE(wait_until(**watch, [](const auto& list) { return list.size() == 1; }))
+      << (*watch)->current().size();
+}
+
 }  // namespace
 }  // namespace hubrt::dds::test

@@ -43,11 +43,14 @@ Expected<std::string> cyclone_config_for_host(const StationNetwork& station, std
   }
   xml += "      </Interfaces>\n      <AllowMulticast>false</AllowMulticast>\n    </General>\n";
   xml += "    <Discovery>\n      <ParticipantIndex>auto</ParticipantIndex>\n";
+  // Cyclone 0.10.2 admits MaxAutoParticipantIndex processes per host, indices 0 to one less: rtps_init
+  // (src/core/ddsi/src/q_init.c) refuses the index equal to it ("Failed to find a free participant
+  // index"), and the peer list covers indices below it (q_addrset.c, add_addresses_to_addrset_1).
   xml += fmt::format("      <MaxAutoParticipantIndex>{}</MaxAutoParticipantIndex>\n",
-                     station.max_participant_index());
+                     station.max_participant_index() + 1);
   xml += "      <Peers>\n";
   for (const StationHost& peer : station.hosts) {
-    // Each peer address is sent discovery once per participant index 0..MaxAutoParticipantIndex
+    // Each peer address is sent discovery once per participant index 0..MaxAutoParticipantIndex-1
     // (cyclonedds_specifics.rst, "Discovery Addresses"); this host's own address reaches its
     // other processes.
     xml += fmt::format("        <Peer address=\"{}\"/> <!-- {}{}: {} -->\n", peer.address, peer.name,

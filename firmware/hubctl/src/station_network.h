@@ -41,8 +41,9 @@ struct StationNetwork {
 
   // Cyclone gives each process (one DDSI instance per domain) a participant index, probing from 0
   // upwards on its host (Discovery/ParticipantIndex auto), and sends discovery to every peer
-  // address once per index up to Discovery/MaxAutoParticipantIndex: the index must cover the
-  // busiest host's processes plus its spare participants, on every host alike.
+  // address once per index below Discovery/MaxAutoParticipantIndex: the indices must cover the
+  // busiest host's processes plus its spare participants, on every host alike. The highest index
+  // a process may take (MaxAutoParticipantIndex is one more: net_config_xml.cc).
   [[nodiscard]] int max_participant_index() const;
   // The UDP ports the station uses, on every host (Cyclone 0.10.2
   // docs/manual/config/cyclonedds_specifics.rst, "Controlling Port Numbers", with the DDSI

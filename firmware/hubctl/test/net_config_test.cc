@@ -5,10 +5,12 @@
 #include <regex>
 #include <set>
 
+#include <dds/dds.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "hubrt/dds/domain.h"
+#include "hubrt/test_support/test_domain.h"
 
 #include "net_config_xml.h"
 #include "station_network.h"
@@ -93,17 +95,36 @@ TEST(NetConfig, SelectsTheInterfaceByAddressOrByName) {
 }
 
 // cell-pi runs three processes, plus two spare participants (hubctl): indices 0..4, on every
-// host alike, since each host sends discovery to indices 0..Max of every peer.
+// host alike, since each host sends discovery to indices 0..Max-1 of every peer. Cyclone 0.10.2
+// admits MaxAutoParticipantIndex processes, not one more (net_config_xml.cc): it is 5, and a
+// host running one process with no spare needs 1 (with 0 no process could join DDS at all).
 TEST(NetConfig, ParticipantIndexCoversTheBusiestHostPlusSpares) {
   const StationNetwork station = load(kStation);
   EXPECT_EQ(station.max_participant_index(), 4);
   for (const StationHost& host : station.hosts) {
     EXPECT_THAT(xml_for(station, host.name),
-                HasSubstr("<MaxAutoParticipantIndex>4</MaxAutoParticipantIndex>"))
+                HasSubstr("<MaxAutoParticipantIndex>5</MaxAutoParticipantIndex>"))
         << host.name;
   }
   const StationNetwork quiet = load("spare_participants: 0\nhosts:\n  a: {address: 10.0.0.1, runs: [x]}\n");
   EXPECT_EQ(quiet.max_participant_index(), 0);
+  EXPECT_THAT(xml_for(quiet, "a"), HasSubstr("<MaxAutoParticipantIndex>1</MaxAutoParticipantIndex>"));
+}
+
+// What the file says, Cyclone does: a host that runs one process and keeps no spare lets that
+// process join (on loopback, in a private domain, so nothing else is reached).
+TEST(NetConfig, CycloneAdmitsTheProcessesTheFileCounts) {
+  auto domain = test_support::TestDomain::acquire();
+  ASSERT_TRUE(domain) << domain.error().message;
+  const StationNetwork station =
+      load("domain: " + std::to_string(domain->domain_id()) +
+           "\nspare_participants: 0\nhosts:\n  a: {address: 127.0.0.1, runs: [x]}\n");
+  const std::string xml = xml_for(station, "a");
+  const dds_entity_t cyclone_domain = dds_create_domain(domain->domain_id(), xml.c_str());
+  ASSERT_GE(cyclone_domain, 0) << dds_strretcode(cyclone_domain) << "\n" << xml;
+  const dds_entity_t participant = dds_create_participant(domain->domain_id(), nullptr, nullptr);
+  EXPECT_GE(participant, 0) << dds_strretcode(participant) << "\n" << xml;
+  EXPECT_EQ(dds_delete(cyclone_domain), DDS_RETCODE_OK);
 }
 
 TEST(NetConfig, CarriesHubrtsResourceBoundsAndThePortsForTheFirewall) {

@@ -25,9 +25,15 @@ struct DomainConfig {
 // stay below 65536).
 inline constexpr std::uint32_t kMaxDomainId = 232;
 
+// How many participants (processes) of one domain loopback_config_xml() admits on the host: 64
+// hubs, hubctl, a planner and room for more (Cyclone's default MaxAutoParticipantIndex of 9 admits
+// 9). Domain kMaxDomainId admits kLoopbackParticipantsInLastDomain: its port numbers end at 65535.
+inline constexpr int kLoopbackParticipantsPerHost = 100;
+inline constexpr int kLoopbackParticipantsInLastDomain = 63;
+
 // The configuration that keeps a participant on the loopback interface: interface "lo", no
-// multicast, unicast discovery to 127.0.0.1 with automatic participant indices (up to 32
-// participants on the host; Cyclone's default of 9 caps a unicast host at 10), a 192 KiB
+// multicast, unicast discovery to 127.0.0.1 with automatic participant indices (up to
+// kLoopbackParticipantsPerHost participants on the host), a 192 KiB
 // receive buffer instead of 1 MiB (bounds the RSS saw-tooth of incoming traffic: docs/soak.md),
 // and sample_bounds_config_xml().
 // Valid for any domain id. Used by tests and by single-machine demos. Thread-safe.

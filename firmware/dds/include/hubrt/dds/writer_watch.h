@@ -70,6 +70,10 @@ class WriterWatch {
   TopicFilter filter_;
   WritersChanged changed_;
   std::mutex refresh_mutex_;  // one refresh at a time (two listeners may fire at once)
+  // Entries of the sample buffers handed to each reader: never fewer than its largest loan so far
+  // (writer_watch.cc, LoanBuffer). Guarded by refresh_mutex_.
+  std::size_t participants_capacity_ = 64;
+  std::size_t publications_capacity_ = 64;
   mutable std::mutex current_mutex_;
   std::vector<WatchedWriter> current_;
   bool reported_ = false;
