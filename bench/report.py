@@ -276,7 +276,9 @@ def startup_section(report, startup):
         "`hubrt_bench_startup`: a subscriber waits on the State topic; then hubd (Dock ECU) or a raw C API writer "
         "at the same rate is spawned, and the time to the first State arriving is taken. Both include process "
         "start, Cyclone start-up and discovery in both directions; the hub also loads and checks its board and "
-        "hub files, watches discovery for a twin (`--twin-check-ms`, 300 ms by default) and builds its nodes. "
+        "hub files, watches discovery for a twin until it has settled (no participant newly discovered for 15 ms; "
+        "the whole `--twin-check-ms`, 300 ms, only while a hub of an older hubrt is on the domain) and builds "
+        "its nodes. "
         "States written before discovery completes reach nobody (volatile durability): the raw writer's first "
         "State received is the first one written after it, so at the shipped 10 Hz its figure rounds up to a "
         "100 ms period; the hub publishes its State at once when a new reader matches, so its figure is when it "
@@ -302,11 +304,20 @@ def startup_section(report, startup):
                f"start, DDS start-up, discovery), so {max(h['p50'] - r['p50'], 0):.1f} ms is the hub's own start-up "
                "(loading and validating YAML, building the fake backend and the nodes, more DDS entities to "
                "discover).")
-        why += (" Of that, the twin check's discovery window (300 ms by default: README, \"One hub name, one "
-                "hub\") is most: with `--twin-check-ms 0` the hub is reachable in about the raw writer's time.")
+        why += (" The twin check ends once discovery has settled (15 ms without a newly discovered participant: "
+                "README, \"One hub name, one hub\"), not after its 300 ms window; the rest is process start "
+                "(hubd links more libraries than the raw program) and the hub's files, nodes and DDS entities.")
         report.aim(f"first State within 50 ms of start ({rate:g} Hz)",
                    f"p50 {ms(h['p50'], 1)}, max {ms(h['max'], 1)} (raw writer p50 {ms(r['p50'], 1)})",
                    h["p50"] <= 50, why)
+        report.aim(f"start -> first State hub / raw writer <= 1.0 ({rate:g} Hz)", f"{entry['ratio_p50']:.2f}x",
+                   entry["ratio_p50"] <= 1.0,
+                   f"hubd p50 {ms(h['p50'], 1)} against {ms(r['p50'], 1)} for the raw writer. " +
+                   ("The raw writer does not publish when a reader matches, so at 10 Hz its first State received "
+                    "waits for the next period; the hub's does not." if rate < 100 else
+                    "At this rate both are reachable as soon as discovery completes: the difference is hubd's own "
+                    "start-up (more shared libraries to load and relocate, the files, the twin check's settling, "
+                    "the nodes and their DDS entities)."))
 
 
 def scale_section(report, scale):

@@ -118,7 +118,8 @@ endforeach()
 
 # --- contents: everything in component hubrt-board, paths relative to / ------------------------
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
-install(TARGETS hubd hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+# The board build of hubd (firmware/hubd: no fake backend, no simulators), installed as hubd.
+install(TARGETS hubd_board hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
 if(HUBRT_PKG_HUB STREQUAL "operator_hub")
   install(TARGETS operator-enrol RUNTIME DESTINATION usr/bin ${_pkg_component})  # the allow-list's writer
 endif()

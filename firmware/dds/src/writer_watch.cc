@@ -130,17 +130,40 @@ std::vector<WatchedWriter> WriterWatch::current() const {
   return current_;
 }
 
+std::vector<WatchedParticipant> WriterWatch::participants() const {
+  const std::lock_guard lock(current_mutex_);
+  return participants_current_;
+}
+
 void WriterWatch::refresh() noexcept {
   try {
     const std::lock_guard lock(refresh_mutex_);
     if (!purge_gone(participants_.get()) || !purge_gone(publications_.get())) return;  // being deleted
     std::map<Guid, ProcessInfo> processes;
+    std::vector<WatchedParticipant> others;
     const bool read_participants = read_alive<dds_builtintopic_participant_t>(
         participants_.get(), [&](const dds_builtintopic_participant_t& p) {
-          processes[Guid::from(p.key)] = ProcessInfo{property(p.qos, "__Hostname"), property(p.qos, "__Pid"),
-                                                     property(p.qos, "__ProcessName"), user_data(p.qos)};
+          const Guid key = Guid::from(p.key);
+          ProcessInfo& info = processes[key] =
+              ProcessInfo{property(p.qos, "__Hostname"), property(p.qos, "__Pid"),
+                          property(p.qos, "__ProcessName"), user_data(p.qos)};
+          if (key != self_) others.push_back(WatchedParticipant{key, info.user_data});
         });
     if (!read_participants) return;
+    std::sort(others.begin(), others.end(),
+              [](const WatchedParticipant& a, const WatchedParticipant& b) { return a.key < b.key; });
+    {
+      const std::lock_guard current_lock(current_mutex_);
+      std::uint64_t added = 0;
+      for (const WatchedParticipant& other : others) {
+        const bool known = std::binary_search(
+            participants_current_.begin(), participants_current_.end(), other,
+            [](const WatchedParticipant& a, const WatchedParticipant& b) { return a.key < b.key; });
+        if (!known) ++added;
+      }
+      participants_current_ = std::move(others);
+      if (added > 0) participants_discovered_.fetch_add(added, std::memory_order_release);
+    }
     std::vector<WatchedWriter> writers;
     const bool read_publications = read_alive<dds_builtintopic_endpoint_t>(
         publications_.get(), [&](const dds_builtintopic_endpoint_t& e) {
