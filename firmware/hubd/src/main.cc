@@ -273,7 +273,9 @@ int main(int argc, char** argv) {
   app.add_option("--board", options.board, "Board name (file in the boards folder) or path to a board file")
       ->required();
   app.add_option("--hub", options.hub, "Hub type or hub file (default: the board's only hub)");
-  app.add_option("--backend", options.backend, "HAL backend (auto: fake for simulation boards)")
+  app.add_option("--backend", options.backend,
+                 "HAL backend (auto: fake for simulation boards; the board build that the packages install "
+                 "has no fake backend)")
       ->check(CLI::IsMember({"auto", "fake", "linux"}));
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
