@@ -192,10 +192,11 @@ file(WRITE "${CPACK_PROJECT_CONFIG_FILE}"
      "set(HUBRT_PKG_BINARIES usr/bin/hubd usr/bin/hubctl)\n")
 include(CPack)
 
-# cmake --build <dir> --target hubrt-deb: builds hubd and hubctl (nothing else) and packs them.
+# cmake --build <dir> --target hubrt-deb: builds hubd (its board build, hubd_board) and hubctl
+# (nothing else) and packs them.
 add_custom_target(hubrt-deb
   COMMAND "${CMAKE_CPACK_COMMAND}" --config "${CMAKE_BINARY_DIR}/CPackConfig.cmake"
-  DEPENDS hubd hubctl
+  DEPENDS hubd_board hubctl
   WORKING_DIRECTORY "${CMAKE_BINARY_DIR}"
   COMMENT "Packing hubrt-${HUBRT_PKG_BOARD} (${HUBRT_TARGET_DEB_ARCH})"
   VERBATIM)
