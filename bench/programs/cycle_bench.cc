@@ -20,6 +20,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include "hubrt/assembly/fake_simulation.h"
 #include "hubrt/assembly/hub_assembly.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/topic.h"
@@ -177,6 +178,7 @@ void hub_cycle(benchmark::State& state, bool changing) {
   request.board_file = std::string(HUBRT_SOURCE_DIR) + "/boards/host-sim.yaml";
   request.hub_file = std::string(HUBRT_SOURCE_DIR) + "/hubs/dock_ecu/dock_ecu.yaml";
   request.backend = assembly::BackendKind::kFake;
+  request.simulation = &assembly::fake_simulation();
   request.domain = domain->config();
   request.rate_hz = 1000;
   auto assembled = assembly::assemble_hub(request, clock);

@@ -118,7 +118,8 @@ endforeach()
 
 # --- contents: everything in component hubrt-board, paths relative to / ------------------------
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
-install(TARGETS hubd hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+# The board build of hubd (firmware/hubd: no fake backend, no simulators), installed as hubd.
+install(TARGETS hubd_board hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
 if(HUBRT_PKG_HUB STREQUAL "operator_hub")
   install(TARGETS operator-enrol RUNTIME DESTINATION usr/bin ${_pkg_component})  # the allow-list's writer
 endif()
@@ -191,10 +192,11 @@ file(WRITE "${CPACK_PROJECT_CONFIG_FILE}"
      "set(HUBRT_PKG_BINARIES usr/bin/hubd usr/bin/hubctl)\n")
 include(CPack)
 
-# cmake --build <dir> --target hubrt-deb: builds hubd and hubctl (nothing else) and packs them.
+# cmake --build <dir> --target hubrt-deb: builds hubd (its board build, hubd_board) and hubctl
+# (nothing else) and packs them.
 add_custom_target(hubrt-deb
   COMMAND "${CMAKE_CPACK_COMMAND}" --config "${CMAKE_BINARY_DIR}/CPackConfig.cmake"
-  DEPENDS hubd hubctl
+  DEPENDS hubd_board hubctl
   WORKING_DIRECTORY "${CMAKE_BINARY_DIR}"
   COMMENT "Packing hubrt-${HUBRT_PKG_BOARD} (${HUBRT_TARGET_DEB_ARCH})"
   VERBATIM)

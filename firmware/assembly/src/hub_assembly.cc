@@ -10,11 +10,9 @@
 #include "hubrt/assembly/hub_types.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
-#include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/hal/linux/backend.h"
 #include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hub_api/subscriptions.h"
-#include "hubrt/sim/sim_bridge_stage.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -52,12 +50,20 @@ Expected<void> apply_overrides(const AssemblyRequest& request, config::HubConfig
 
 Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
   CheckedHub out;
-  auto board = hal::load_board(request.board_file);
-  if (!board) return std::move(board).error();
-  out.board = std::move(*board);
-  auto config = config::load_hub_config(request.hub_file);
-  if (!config) return std::move(config).error();
-  out.config = std::move(*config);
+  if (request.loaded_board != nullptr) {
+    out.board = *request.loaded_board;
+  } else {
+    auto board = hal::load_board(request.board_file);
+    if (!board) return std::move(board).error();
+    out.board = std::move(*board);
+  }
+  if (request.loaded_hub != nullptr) {
+    out.config = *request.loaded_hub;
+  } else {
+    auto config = config::load_hub_config(request.hub_file);
+    if (!config) return std::move(config).error();
+    out.config = std::move(*config);
+  }
   if (auto ok = apply_overrides(request, out.config); !ok) return std::move(ok).error();
 
   const hub_api::HubType* type = find_hub_type(out.config.type);
@@ -69,6 +75,10 @@ Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
   if (!required) return std::move(required).error();
   if (auto ok = hal::check_requirements(out.board, *required); !ok) return std::move(ok).error();
   if (auto ok = type->check(out.config); !ok) return std::move(ok).error();
+  if (request.backend == BackendKind::kFake && request.simulation == nullptr) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: the fake backend is not available: {}",
+                                                               out.board.file, kNoSimulationHint));
+  }
   if (request.backend == BackendKind::kFake && !out.board.simulation) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: board {} has no simulation section: the fake backend cannot run it",
@@ -90,7 +100,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   // The start stamp decides which of two twins is the later one (twin_rules.h).
   const std::int64_t started_ns = clock.now().wall.ns_since_epoch;
   auto participant =
-      dds::Participant::create(request.domain, out->config.name, start_stamp_user_data(started_ns));
+      dds::Participant::create(request.domain, out->config.name,
+                               hub_user_data(started_ns, out->config.ros_namespace, out->config.name));
   if (!participant) return std::move(participant).error();
   out->participant.emplace(std::move(*participant));
   if (request.twin_check) {
@@ -98,21 +109,23 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     if (!watch) return std::move(watch).error();
     // Before the backend: a twin refused here has opened no device and touched no output.
     if (*request.twin_check > Duration::zero()) {
-      if (auto alone = (*watch)->check_at_start(*request.twin_check); !alone) return std::move(alone).error();
+      if (auto alone = (*watch)->check_at_start(*request.twin_check, request.twin_quiet); !alone)
+        return std::move(alone).error();
     }
     out->twin_watch = std::move(*watch);
   }
 
   if (request.backend == BackendKind::kFake) {
-    auto fake = hal::fake::FakeBackend::create(out->board, clock);
-    if (!fake) {
-      return make_error(fake.error().code,
-                        fmt::format("fake backend for {}: {}", out->board.file, fake.error().message));
+    auto simulated = request.simulation->open_backend(out->board, clock);
+    if (!simulated) {
+      return make_error(simulated.error().code,
+                        fmt::format("fake backend for {}: {}", out->board.file, simulated.error().message));
     }
-    out->fake = fake->get();
-    out->backend = std::move(*fake);
+    out->simulated = std::move(*simulated);
+    out->devices = &out->simulated->backend();
   } else {
     out->backend = std::make_unique<hal::LinuxBackend>();
+    out->devices = out->backend.get();
   }
 
   runtime::HubOptions options;
@@ -123,7 +136,7 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   out->hub = std::make_unique<runtime::Hub>(std::move(options));
   out->subscriptions = std::make_unique<hub_api::Subscriptions>(out->config, *out->participant);
   out->hub->begin_opening_devices();
-  const hub_api::HubContext context{out->config,   out->board, *out->backend, *out->participant,
+  const hub_api::HubContext context{out->config,   out->board, *out->devices, *out->participant,
                                     request.waker, log,        clock,         *out->subscriptions};
   if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();
   // Other hubs' States are taken before the nodes step, so the logic sees this cycle's.
@@ -145,9 +158,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->twins = twins.get();
     out->hub->add_stage(std::move(twins));
   }
-  if (out->fake != nullptr) {
+  if (out->simulated) {
     auto bridge =
-        sim::SimBridgeStage::create(*out->participant, out->config.name, out->board, *out->fake, log);
+        request.simulation->bridge(*out->participant, out->config.name, out->board, *out->simulated, log);
     if (!bridge) return std::move(bridge).error();
     out->hub->add_stage(std::move(*bridge));
   }

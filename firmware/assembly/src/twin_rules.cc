@@ -11,6 +11,23 @@ namespace hubrt::assembly {
 namespace {
 
 constexpr std::string_view kStampKey = "hubrt.started_ns=";
+constexpr std::string_view kIdentityKey = "hubrt.hub=";
+
+// The value of `key` ("name=") in USER_DATA made of "key=value;" pairs (ROS 2 uses the same
+// shape), found at a pair boundary; nullopt when absent, unterminated or empty.
+std::optional<std::string_view> user_data_value(std::string_view user_data, std::string_view key) noexcept {
+  std::size_t at = 0;
+  for (;;) {
+    at = user_data.find(key, at);
+    if (at == std::string_view::npos) return std::nullopt;
+    if (at == 0 || user_data[at - 1] == ';') break;
+    at += key.size();
+  }
+  const std::string_view rest = user_data.substr(at + key.size());
+  const std::size_t end = rest.find(';');
+  if (end == std::string_view::npos || end == 0) return std::nullopt;
+  return rest.substr(0, end);
+}
 
 }  // namespace
 
@@ -18,22 +35,45 @@ std::string start_stamp_user_data(std::int64_t started_ns) {
   return fmt::format("{}{};", kStampKey, started_ns);
 }
 
+std::string hub_user_data(std::int64_t started_ns, std::string_view ros_namespace, std::string_view hub) {
+  return fmt::format("{}{};{}{}/{};", kStampKey, started_ns, kIdentityKey, ros_namespace, hub);
+}
+
 std::optional<std::int64_t> parse_start_stamp(std::string_view user_data) noexcept {
-  // USER_DATA is "key=value;" pairs (ROS 2 uses the same shape); find ours at a pair boundary.
-  std::size_t at = 0;
-  for (;;) {
-    at = user_data.find(kStampKey, at);
-    if (at == std::string_view::npos) return std::nullopt;
-    if (at == 0 || user_data[at - 1] == ';') break;
-    at += kStampKey.size();
-  }
-  const std::string_view rest = user_data.substr(at + kStampKey.size());
-  const std::size_t end = rest.find(';');
-  if (end == std::string_view::npos || end == 0) return std::nullopt;
+  const std::optional<std::string_view> text = user_data_value(user_data, kStampKey);
+  if (!text) return std::nullopt;
   std::int64_t value = 0;
-  const auto [ptr, ec] = std::from_chars(rest.data(), rest.data() + end, value);
-  if (ec != std::errc() || ptr != rest.data() + end) return std::nullopt;
+  const auto [ptr, ec] = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (ec != std::errc() || ptr != text->data() + text->size()) return std::nullopt;
   return value;
+}
+
+std::optional<std::string_view> parse_hub_identity(std::string_view user_data) noexcept {
+  return user_data_value(user_data, kIdentityKey);
+}
+
+StartupVerdict StartupCheck::update(const std::vector<dds::WatchedParticipant>& participants,
+                                    std::uint64_t discovered, std::size_t twin_writers, Time now) {
+  if (twin_writers > 0) return StartupVerdict::kTwin;
+  if (discovered != discovered_) {
+    discovered_ = discovered;
+    last_new_ = now;
+  }
+  bool unnamed_hub = false;
+  for (const dds::WatchedParticipant& other : participants) {
+    const std::optional<std::string_view> identity = parse_hub_identity(other.user_data);
+    if (identity && *identity == identity_ && !claimed_) {
+      claimed_ = true;
+      claimed_at_ = now;
+      claimant_ = other.key;
+    }
+    if (!identity && parse_start_stamp(other.user_data)) unnamed_hub = true;
+  }
+  const bool over = now - begin_ >= window_;
+  if (claimed_) return over || now - claimed_at_ >= quiet_ ? StartupVerdict::kTwin : StartupVerdict::kWait;
+  if (over) return StartupVerdict::kAlone;
+  if (!unnamed_hub && now - last_new_ >= quiet_) return StartupVerdict::kAlone;
+  return StartupVerdict::kWait;
 }
 
 bool is_later(const HubStamp& a, const HubStamp& b) noexcept {

@@ -21,7 +21,9 @@ std::string describe(const TwinPeer& peer) {
 Expected<std::unique_ptr<TwinWatch>> TwinWatch::start(const dds::Participant& participant,
                                                       std::string ros_namespace, std::string hub_name,
                                                       std::shared_ptr<spdlog::logger> log) {
-  std::unique_ptr<TwinWatch> watch(new TwinWatch(hub_name, log ? std::move(log) : spdlog::default_logger()));
+  std::string identity = fmt::format("{}/{}", ros_namespace, hub_name);
+  std::unique_ptr<TwinWatch> watch(
+      new TwinWatch(hub_name, std::move(identity), log ? std::move(log) : spdlog::default_logger()));
   TwinWatch* self = watch.get();
   auto writers = dds::WriterWatch::start(
       participant,
@@ -60,24 +62,43 @@ void TwinWatch::changed(const std::vector<dds::WatchedWriter>& writers) {
   }
 }
 
-Expected<void> TwinWatch::check_at_start(Duration window) const {
-  log_->debug("twin: watching discovery for {} ms for another participant publishing the States of hub '{}'",
-              std::chrono::duration_cast<std::chrono::milliseconds>(window).count(), hub_name_);
+Expected<void> TwinWatch::check_at_start(Duration window, Duration quiet) const {
+  log_->debug(
+      "twin: watching discovery (at most {} ms, settled after {} ms quiet) for another participant "
+      "publishing the States of hub '{}'",
+      std::chrono::duration_cast<std::chrono::milliseconds>(window).count(),
+      std::chrono::duration_cast<std::chrono::milliseconds>(quiet).count(), hub_name_);
   // Polled rather than waited on: the window is short and this runs once, before the cycle.
-  const auto deadline = std::chrono::steady_clock::now() + window;
+  const auto mono = [] { return Time(std::chrono::steady_clock::now().time_since_epoch()); };
+  const Time begin = mono();
+  StartupCheck check(identity_, begin, window, quiet);
   std::uint64_t seen = 0;
   TwinSnapshot snapshot;
   for (;;) {
     copy_if_changed(seen, snapshot);
-    if (snapshot.count > 0) break;
-    if (std::chrono::steady_clock::now() >= deadline) return {};
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const Time now = mono();
+    const StartupVerdict verdict =
+        check.update(writers_->participants(), writers_->participants_discovered(), snapshot.count, now);
+    if (verdict == StartupVerdict::kAlone) {
+      log_->debug("twin: none after {:.1f} ms of discovery", to_seconds(now - begin) * 1e3);
+      return {};
+    }
+    if (verdict == StartupVerdict::kTwin) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   std::string twins;
   for (std::size_t i = 0; i < snapshot.count; ++i) {
     twins += fmt::format("{}{}", i == 0 ? "" : "; ", describe(snapshot.peers[i]));
   }
   if (snapshot.more > 0) twins += fmt::format("; and {} more", snapshot.more);
+  if (snapshot.count == 0) {
+    // Known by its identity (SPDP) before any of its writers arrived.
+    TwinPeer peer;
+    peer.participant = check.claimant();
+    runtime::TextBuffer<128> origin;
+    describe_origin(peer, origin);
+    twins = fmt::format("a hub announcing the same identity '{}' ({})", identity_, origin.view());
+  }
   return make_error(
       ErrorCode::kBusy,
       fmt::format("twin: another hub already publishes the States of hub '{}': {}; refusing to "

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hubrt/assembly/fake_simulation.h"
 #include "hubrt/assembly/hub_assembly.h"
 #include "hubrt/test_support/test_domain.h"
 
@@ -49,6 +50,7 @@ class TwinAssemblyTest : public ::testing::TestWithParam<const char*> {
     r.board_file = std::string(HUBRT_SOURCE_DIR) + "/boards/host-sim.yaml";
     r.hub_file = hub_file_.string();
     r.backend = BackendKind::kFake;
+    r.simulation = &fake_simulation();
     r.domain = domain_->config();
     r.twin_check = twin_check;
     r.request_stop = [&stops] { ++stops; };
@@ -74,6 +76,32 @@ TEST_P(TwinAssemblyTest, TheSecondHubIsRefusedAtStartUpNamingHostAndPid) {
             std::string::npos)
       << second.error().message;
   EXPECT_NE(second.error().message.find(fmt::format("from host {} pid {}", host_name(), getpid())),
+            std::string::npos)
+      << second.error().message;
+}
+
+TEST_P(TwinAssemblyTest, AloneOnTheDomainTheStartUpCheckEndsOnceDiscoverySettledNotAfterItsWindow) {
+  // A window far longer than any settling: before the check ended on settled discovery, assembly
+  // took the whole window. The bound is a tenth of it, generous for a loaded machine under
+  // sanitizers (the check settles after kDefaultTwinCheckQuiet, 15 ms, of quiet discovery).
+  const auto started = std::chrono::steady_clock::now();
+  auto alone = assemble_hub(request(seconds(30), earlier_stops_), earlier_clock_);
+  const auto took = std::chrono::steady_clock::now() - started;
+  ASSERT_TRUE(alone) << alone.error().message;
+  EXPECT_LT(took, seconds(3));
+}
+
+TEST_P(TwinAssemblyTest, ATwinIsRefusedWithinItsWindowEvenWhenTheCheckCouldSettleEarly) {
+  auto first = assemble_hub(request(Duration::zero(), earlier_stops_), earlier_clock_);
+  ASSERT_TRUE(first) << first.error().message;
+  // The first hub's identity is in its SPDP: known to the second before any endpoint, so the
+  // check cannot settle on "alone" however quiet discovery gets.
+  AssemblyRequest second_request = request(seconds(30), later_stops_);
+  second_request.twin_quiet = milliseconds(1);
+  auto second = assemble_hub(second_request, later_clock_);
+  ASSERT_FALSE(second);
+  EXPECT_EQ(second.error().code, ErrorCode::kBusy);
+  EXPECT_NE(second.error().message.find("twin: another hub already publishes the States of hub 'dock_ecu'"),
             std::string::npos)
       << second.error().message;
 }

@@ -58,7 +58,11 @@ std::string loopback_config_xml() {
 }
 
 std::string sample_bounds_config_xml() {
-  return "<CycloneDDS><Domain id=\"any\">" + max_sample_size_element() + "</Domain></CycloneDDS>";
+  // The receive buffer bound too: with a station's configuration (CYCLONEDDS_URI, /etc/default/hubd)
+  // a hub otherwise runs with Cyclone's 1 MiB default, three pools of which (one per receive
+  // thread and socket kind, nn_rbufpool_new) it fills over time: heaptrack showed 3.15 MB of
+  // hubd's heap there. A station configuration that sets Sizing/ReceiveBufferSize still wins.
+  return "<CycloneDDS><Domain id=\"any\">" + resource_bounds_elements_xml() + "</Domain></CycloneDDS>";
 }
 
 std::string with_sample_bounds(std::string_view cyclone_xml) {

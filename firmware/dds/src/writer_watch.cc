@@ -161,6 +161,11 @@ std::vector<WatchedWriter> WriterWatch::current() const {
   return current_;
 }
 
+std::vector<WatchedParticipant> WriterWatch::participants() const {
+  const std::lock_guard lock(current_mutex_);
+  return participants_current_;
+}
+
 void WriterWatch::refresh() noexcept {
   try {
     const std::lock_guard lock(refresh_mutex_);
@@ -175,24 +180,47 @@ void WriterWatch::refresh() noexcept {
         });
     if (gone_participants < 0 || gone_writers < 0 || new_participants < 0 || new_watched < 0)
       return;  // being deleted
+    // Each discovery event used to re-read every writer and participant on the domain: with N
+    // hubs on a host each hub did that N * (writers per hub) times while they started, O(N^2)
+    // sample copies per hub (Cyclone copies a builtin sample's QoS into each loan), which on 2
+    // cores stretched 64 hubs' discovery to tens of seconds. The participants are re-read when
+    // one came or went (the start-up check counts them, and knows a twin by its USER_DATA
+    // before its writers appear); the writers only when a watched writer came, a writer went, or
+    // a participant came or went while watched writers exist (its process details).
+    const bool participants_changed = gone_participants > 0 || new_participants > 0;
+    bool writers_unchanged = false;
     {
-      // Each discovery event used to re-read every writer and participant on the domain: with
-      // N hubs on a host each hub did that N * (writers per hub) times while they started, O(N^2)
-      // sample copies per hub (Cyclone copies a builtin sample's QoS into each loan), which on 2
-      // cores stretched 64 hubs' discovery to tens of seconds. A re-read is needed only when a
-      // watched writer came, a writer went, or a participant came or went while watched writers
-      // exist (its process details).
       const std::lock_guard current_lock(current_mutex_);
-      const bool process_changed = !current_.empty() && (gone_participants > 0 || new_participants > 0);
-      if (reported_ && new_watched == 0 && gone_writers == 0 && !process_changed) return;
+      const bool process_changed = !current_.empty() && participants_changed;
+      writers_unchanged = reported_ && new_watched == 0 && gone_writers == 0 && !process_changed;
     }
+    if (writers_unchanged && !participants_changed) return;
     std::map<Guid, ProcessInfo> processes;
+    std::vector<WatchedParticipant> others;
     const bool read_participants = read_alive<dds_builtintopic_participant_t>(
         participants_.get(), participants_capacity_, [&](const dds_builtintopic_participant_t& p) {
-          processes[Guid::from(p.key)] = ProcessInfo{property(p.qos, "__Hostname"), property(p.qos, "__Pid"),
-                                                     property(p.qos, "__ProcessName"), user_data(p.qos)};
+          const Guid key = Guid::from(p.key);
+          ProcessInfo& info = processes[key] =
+              ProcessInfo{property(p.qos, "__Hostname"), property(p.qos, "__Pid"),
+                          property(p.qos, "__ProcessName"), user_data(p.qos)};
+          if (key != self_) others.push_back(WatchedParticipant{key, info.user_data});
         });
     if (!read_participants) return;
+    std::sort(others.begin(), others.end(),
+              [](const WatchedParticipant& a, const WatchedParticipant& b) { return a.key < b.key; });
+    {
+      const std::lock_guard current_lock(current_mutex_);
+      std::uint64_t added = 0;
+      for (const WatchedParticipant& other : others) {
+        const bool known = std::binary_search(
+            participants_current_.begin(), participants_current_.end(), other,
+            [](const WatchedParticipant& a, const WatchedParticipant& b) { return a.key < b.key; });
+        if (!known) ++added;
+      }
+      participants_current_ = std::move(others);
+      if (added > 0) participants_discovered_.fetch_add(added, std::memory_order_release);
+    }
+    if (writers_unchanged) return;
     std::vector<WatchedWriter> writers;
     const bool read_publications = read_alive<dds_builtintopic_endpoint_t>(
         publications_.get(), publications_capacity_, [&](const dds_builtintopic_endpoint_t& e) {

@@ -80,14 +80,15 @@ TEST(LoopbackConfig, BoundsTheReceiveBufferSawTooth) {
 }
 
 // Cyclone discards samples larger than Internal/MaxSampleSize on their first datagram
-// (q_receive.c, drop_oversize): every configuration hubrt writes carries the bound.
+// (q_receive.c, drop_oversize): every configuration hubrt writes carries the bound, and the
+// 192 KiB receive buffer (hubd's first source: a station's configuration alone left it at 1 MiB).
 TEST(LoopbackConfig, BoundsTheSampleSize) {
   EXPECT_EQ(kMaxSampleSizeBytes, 65536u);
   EXPECT_NE(loopback_config_xml().find("<Internal><MaxSampleSize>65536 B</MaxSampleSize></Internal>"),
             std::string::npos);
   EXPECT_EQ(sample_bounds_config_xml(),
-            "<CycloneDDS><Domain id=\"any\"><Internal><MaxSampleSize>65536 B</MaxSampleSize></Internal>"
-            "</Domain></CycloneDDS>");
+            "<CycloneDDS><Domain id=\"any\"><Sizing><ReceiveBufferSize>192 KiB</ReceiveBufferSize></Sizing>"
+            "<Internal><MaxSampleSize>65536 B</MaxSampleSize></Internal></Domain></CycloneDDS>");
 }
 
 // hubd creates its domain with the bound first and the station's configuration after it (a later

@@ -7,6 +7,8 @@
 //
 // Exit statuses: hubrt/base/exit_codes.h. Every stop signal (runtime::stop_signals()) ends the
 // cycle, drives the outputs safe, then exits: 0 for SIGTERM/SIGINT, 128+N for signal N otherwise.
+#include <malloc.h>
+
 #include <csignal>
 #include <cstring>
 
@@ -25,6 +27,7 @@
 
 #include "config_files.h"
 #include "crash_handlers.h"
+#include "linked_simulation.h"
 #include "logging.h"
 #include "realtime.h"
 #include "safe_outputs.h"
@@ -73,15 +76,11 @@ int fail(const std::string& message, int code) {
 // The hub's DDS Security: --security/--identity, else the hub file's `security:` section, else
 // none. The credentials are checked here, before Cyclone sees them, so that an expired or foreign
 // certificate is refused with a message naming the file and the date (docs/deploy.md).
-Expected<std::optional<security::SecurityChoice>> security_choice(const Options& options,
-                                                                  const std::string& hub_file) {
-  using Choice = std::optional<security::SecurityChoice>;
-  if (!options.security_dir.empty())
-    return Choice(security::SecurityChoice{options.security_dir, options.identity});
-  auto hub = config::load_hub_config(hub_file);
-  if (!hub) return std::move(hub).error();
-  if (!hub->security) return std::optional<security::SecurityChoice>();
-  return Choice(security::SecurityChoice{hub->security->dir, hub->security->identity});
+std::optional<security::SecurityChoice> security_choice(const Options& options,
+                                                        const config::HubConfig& hub) {
+  if (!options.security_dir.empty()) return security::SecurityChoice{options.security_dir, options.identity};
+  if (!hub.security) return std::nullopt;
+  return security::SecurityChoice{hub.security->dir, hub.security->identity};
 }
 
 Expected<dds::DomainConfig> domain_config(const Options& options,
@@ -105,24 +104,20 @@ Expected<dds::DomainConfig> domain_config(const Options& options,
 }
 
 // The hub to run when --hub is not given: the board's, if it is wired for exactly one.
-Expected<std::string> default_hub(const std::string& board_file) {
-  auto board = hal::load_board(board_file);
-  if (!board) return std::move(board).error();
-  if (board->hubs.size() != 1) {
+Expected<std::string> default_hub(const hal::BoardConfig& board) {
+  if (board.hubs.size() != 1) {
     return make_error(
         ErrorCode::kInvalidArgument,
-        fmt::format("{} is wired for {} hubs: say which with --hub", board_file, board->hubs.size()));
+        fmt::format("{} is wired for {} hubs: say which with --hub", board.file, board.hubs.size()));
   }
-  return board->hubs.front();
+  return board.hubs.front();
 }
 
-Expected<assembly::BackendKind> backend_kind(const Options& options, const std::string& board_file) {
+assembly::BackendKind backend_kind(const Options& options, const hal::BoardConfig& board) {
   if (options.backend == "fake") return assembly::BackendKind::kFake;
   if (options.backend == "linux") return assembly::BackendKind::kLinux;
   // auto: boards with a simulation section are simulation boards.
-  auto board = hal::load_board(board_file);
-  if (!board) return std::move(board).error();
-  return board->simulation ? assembly::BackendKind::kFake : assembly::BackendKind::kLinux;
+  return board.simulation ? assembly::BackendKind::kFake : assembly::BackendKind::kLinux;
 }
 
 int run(const Options& options) {
@@ -131,43 +126,50 @@ int run(const Options& options) {
 
   auto board_file = find_config_file("boards", options.board);
   if (!board_file) return fail(board_file.error().message, kExitConfig);
+  // Each file is read once (the assembly takes them as loaded): parsing YAML is a good part of
+  // hubd's own start-up time.
+  auto board = hal::load_board(*board_file);
+  if (!board) return fail(board.error().message, kExitConfig);
   std::string hub_name = options.hub;
   if (hub_name.empty()) {
-    auto hub = default_hub(*board_file);
+    auto hub = default_hub(*board);
     if (!hub) return fail(hub.error().message, kExitConfig);
     hub_name = *hub;
   }
   auto hub_file = find_config_file("hubs", hub_name);
   if (!hub_file) return fail(hub_file.error().message, kExitConfig);
-  auto backend = backend_kind(options, *board_file);
-  if (!backend) return fail(backend.error().message, kExitConfig);
-  if (options.safe_outputs) return run_safe_outputs({*board_file, *hub_file, *backend}, **logger);
+  const assembly::BackendKind backend = backend_kind(options, *board);
+  if (options.safe_outputs)
+    return run_safe_outputs({*board_file, *hub_file, backend, linked_simulation()}, **logger);
+  auto hub_config = config::load_hub_config(*hub_file);
+  if (!hub_config) return fail(hub_config.error().message, kExitConfig);
   install_crash_handlers();
   SystemdNotifier systemd;
   systemd.allow_startup(kStartupWatchdog);
   // Before the first participant: /diagnostics counts the oversize samples Cyclone drops.
   dds::count_oversize_samples();
-  auto secured = security_choice(options, *hub_file);
-  if (!secured) return fail(secured.error().message, kExitConfig);
-  auto domain = domain_config(options, *secured);
+  const std::optional<security::SecurityChoice> secured = security_choice(options, *hub_config);
+  auto domain = domain_config(options, secured);
   if (!domain) return fail(domain.error().message, kExitConfig);
 
   assembly::AssemblyRequest request;
   request.board_file = *board_file;
   request.hub_file = *hub_file;
-  request.backend = *backend;
+  request.backend = backend;
+  request.simulation = linked_simulation();
+  request.loaded_board = &*board;
+  request.loaded_hub = &*hub_config;
   request.domain = *domain;
   request.name = options.name;
   request.rate_hz = options.rate_hz;
   request.log = *logger;
   request.log_lines_dropped = &log_lines_dropped();
-  const auto describe = [&](const config::HubConfig& hub_config, const std::string& board_name) {
+  const auto describe = [&](const config::HubConfig& running, const std::string& board_name) {
     return fmt::format(
         "hub '{}' ({}) on board '{}' with the {} backend, {} node(s), {:.1f} Hz, DDS domain {}{}",
-        hub_config.name, hub_config.type, board_name,
-        *backend == assembly::BackendKind::kFake ? "fake" : "linux", hub_config.nodes.size(),
-        hub_config.rate_hz, domain->domain_id,
-        *secured ? fmt::format(", DDS Security as '{}'", (*secured)->identity) : std::string());
+        running.name, running.type, board_name, backend == assembly::BackendKind::kFake ? "fake" : "linux",
+        running.nodes.size(), running.rate_hz, domain->domain_id,
+        secured ? fmt::format(", DDS Security as '{}'", secured->identity) : std::string());
   };
   if (options.check_only) {
     // Files and requirements only: no backend (a real board would request its GPIO outputs), no
@@ -196,19 +198,19 @@ int run(const Options& options) {
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
     const std::string& message = assembled.error().message;
-    if (*secured && message.find("create participant") != std::string::npos) {
+    if (secured && message.find("create participant") != std::string::npos) {
       // Our own check passed the files: Cyclone's security plugins refused them and said why on
       // stderr just before (e.g. permissions that do not name this certificate's subject).
       return fail(
           fmt::format("{}; DDS Security identity '{}' refused by Cyclone (its reason is logged above)",
-                      message, (*secured)->identity),
+                      message, secured->identity),
           kExitConfig);
     }
-    if (*secured && message.find("NOT_ALLOWED_BY_SECURITY") != std::string::npos) {
+    if (secured && message.find("NOT_ALLOWED_BY_SECURITY") != std::string::npos) {
       // Access control refused a topic, reader or writer: the identity's permissions do not
       // cover this hub file (hubctl security add --role hub --hub <this hub file>).
       return fail(fmt::format("{}; the permissions of DDS Security identity '{}' do not allow it", message,
-                              (*secured)->identity),
+                              secured->identity),
                   kExitConfig);
     }
     return fail(assembled.error().message, assembled.error().code == ErrorCode::kInvalidArgument ||
@@ -218,6 +220,10 @@ int run(const Options& options) {
                                                : kExitRuntime);
   }
   const std::string summary = describe((*assembled)->config, (*assembled)->board.name);
+  // Start-up is over: what it freed (the YAML trees, the files' text, Cyclone's start-up
+  // scratch) goes back to the system instead of staying in the resident set. malloc_trim(3)
+  // releases the free pages inside the heap too (madvise), not only its top.
+  malloc_trim(0);
 
   spdlog::info("running {}", summary);
   systemd.ready(summary);
@@ -257,12 +263,19 @@ int main(int argc, char** argv) {
   // SIGPIPE ignored, a write to a pipe without reader fails with EPIPE (pipe(7)), and the log sink
   // drops and counts the line. Set before any thread exists, so it holds for all of them.
   std::signal(SIGPIPE, SIG_IGN);
+  // One malloc arena for every thread (glibc's default is up to 8 per core, one per thread that
+  // allocates): Cyclone's threads allocate a little each and every arena keeps its own free pages
+  // resident. The cycle allocates nothing, so nothing real-time waits on the arena's lock; set
+  // before any thread exists (mallopt(3), M_ARENA_MAX).
+  mallopt(M_ARENA_MAX, 1);
   hubrt::hubd::Options options;
   CLI::App app{"hubd — runs one hub: reads its devices, runs its nodes at a fixed rate, talks DDS"};
   app.add_option("--board", options.board, "Board name (file in the boards folder) or path to a board file")
       ->required();
   app.add_option("--hub", options.hub, "Hub type or hub file (default: the board's only hub)");
-  app.add_option("--backend", options.backend, "HAL backend (auto: fake for simulation boards)")
+  app.add_option("--backend", options.backend,
+                 "HAL backend (auto: fake for simulation boards; the board build that the packages install "
+                 "has no fake backend)")
       ->check(CLI::IsMember({"auto", "fake", "linux"}));
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
@@ -284,8 +297,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 1000.0));
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error, critical or off");
   app.add_option("--twin-check-ms", options.twin_check_ms,
-                 "Discovery window at start-up in which another hub publishing this hub's States makes "
-                 "this one refuse to run (0: no start-up check; a twin is still caught while running)")
+                 "Longest discovery window at start-up in which another hub publishing this hub's States "
+                 "(or announcing its name) makes this one refuse to run, before any device is opened; the "
+                 "check ends earlier once discovery has been quiet for 15 ms and no hub of an older hubrt "
+                 "is on the domain (0: no start-up check; a twin is still caught while running)")
       ->check(CLI::Range(0, 60000));
   app.add_flag("--realtime", options.realtime,
                "Run the cycle (and every thread of hubd) under SCHED_FIFO and lock its memory "

@@ -9,7 +9,6 @@
 #include "hubrt/assembly/hub_types.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
-#include "hubrt/hal/fake/fake_backend.h"
 #include "hubrt/hal/linux/backend.h"
 
 namespace hubrt::hubd {
@@ -120,14 +119,23 @@ int run_safe_outputs(const SafeOutputsRequest& request, spdlog::logger& log) {
   if (!outputs) return config_error(outputs.error());
 
   SystemClock clock;  // the fake backend's simulators; outlives the backend
-  std::unique_ptr<hal::Backend> backend;
+  std::unique_ptr<assembly::Simulation::SimulatedBackend> simulated;
+  std::unique_ptr<hal::Backend> linux_backend;
+  hal::Backend* backend = nullptr;
   if (request.backend == assembly::BackendKind::kFake) {
-    auto fake = hal::fake::FakeBackend::create(gpio_only(*board), clock);
+    if (request.simulation == nullptr) {
+      return config_error(
+          make_error(ErrorCode::kInvalidArgument, fmt::format("{}: the fake backend is not available: {}",
+                                                              board->file, assembly::kNoSimulationHint)));
+    }
+    auto fake = request.simulation->open_backend(gpio_only(*board), clock);
     if (!fake) return config_error(fake.error());
-    backend = std::move(*fake);
+    simulated = std::move(*fake);
+    backend = &simulated->backend();
     log.warn("fake backend: the lines a stopped hubd drove lived in that process; these are fresh ones");
   } else {
-    backend = std::make_unique<hal::LinuxBackend>();
+    linux_backend = std::make_unique<hal::LinuxBackend>();
+    backend = linux_backend.get();
   }
 
   log_untouched(*required, log);

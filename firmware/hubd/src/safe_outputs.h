@@ -67,6 +67,8 @@ struct SafeOutputsRequest {
   std::string board_file;  // found by hubd as for a run
   std::string hub_file;
   assembly::BackendKind backend = assembly::BackendKind::kLinux;  // chosen as for a run
+  // For the fake backend (simulated boards); null in the board build, which refuses it.
+  const assembly::Simulation* simulation = nullptr;
 };
 
 // The whole of `hubd --safe-outputs`: loads the files, opens the backend (the fake backend with

@@ -14,6 +14,7 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
 
+#include "hubrt/assembly/fake_simulation.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/linux/gpiod_lines.h"
 
@@ -212,9 +213,9 @@ TEST_F(DriveOutputsSafe, OtherOpenErrorsAreNotRetriedAndAFailedWriteIsAFailure) 
 TEST(RunSafeOutputs, OnTheSimulationBoardDrivesTheRspValvesAndExitsZero) {
   std::ostringstream text;
   spdlog::logger log("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(text));
-  const int code = run_safe_outputs(
-      {source("boards/host-sim.yaml"), source("hubs/rsp_ecu/rsp_ecu.yaml"), assembly::BackendKind::kFake},
-      log);
+  const int code = run_safe_outputs({source("boards/host-sim.yaml"), source("hubs/rsp_ecu/rsp_ecu.yaml"),
+                                     assembly::BackendKind::kFake, &assembly::fake_simulation()},
+                                    log);
   EXPECT_EQ(code, kSafeOutputsDone) << text.str();
   EXPECT_THAT(text.str(), HasSubstr("rsp.lock_valve: driven to its safe level (inactive)"));
   EXPECT_THAT(text.str(), HasSubstr("all 2 outputs driven to their safe levels"));
@@ -223,9 +224,9 @@ TEST(RunSafeOutputs, OnTheSimulationBoardDrivesTheRspValvesAndExitsZero) {
 TEST(RunSafeOutputs, NamesTheBusesOfTheToolEcuAsNotTouched) {
   std::ostringstream text;
   spdlog::logger log("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(text));
-  const int code = run_safe_outputs(
-      {source("boards/host-sim.yaml"), source("hubs/tool_ecu/tool_ecu.yaml"), assembly::BackendKind::kFake},
-      log);
+  const int code = run_safe_outputs({source("boards/host-sim.yaml"), source("hubs/tool_ecu/tool_ecu.yaml"),
+                                     assembly::BackendKind::kFake, &assembly::fake_simulation()},
+                                    log);
   EXPECT_EQ(code, kSafeOutputsDone) << text.str();
   EXPECT_THAT(text.str(), HasSubstr("lift_drive (Modbus): not touched"));
   EXPECT_THAT(text.str(), HasSubstr("tool_bus (CAN): not touched"));

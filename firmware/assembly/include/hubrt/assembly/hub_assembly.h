@@ -10,6 +10,7 @@
 
 #include <spdlog/logger.h>
 
+#include "hubrt/assembly/simulation.h"
 #include "hubrt/assembly/twin_watch.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
@@ -22,10 +23,6 @@
 #include "hubrt/runtime/cycle_runner.h"
 #include "hubrt/runtime/hub.h"
 
-namespace hubrt::hal::fake {
-class FakeBackend;
-}
-
 namespace hubrt::assembly {
 
 enum class BackendKind : std::uint8_t { kFake, kLinux };
@@ -33,7 +30,15 @@ enum class BackendKind : std::uint8_t { kFake, kLinux };
 struct AssemblyRequest {
   std::string board_file;
   std::string hub_file;
+  // The two files as already loaded from board_file and hub_file, when the caller read them
+  // (hubd does, to choose the backend and the security): not read again. Must outlive the call.
+  const hal::BoardConfig* loaded_board = nullptr;
+  const config::HubConfig* loaded_hub = nullptr;
   BackendKind backend = BackendKind::kFake;
+  // What runs simulated boards (BackendKind::kFake): fake_simulation() of hubrt_assembly_sim in
+  // the programs that link it; null in the board build of hubd, which then refuses the fake
+  // backend (simulation.h).
+  const Simulation* simulation = nullptr;
   dds::DomainConfig domain;
   std::optional<std::string> name;      // overrides the configured instance name
   std::optional<double> rate_hz;        // overrides the configured rate
@@ -47,6 +52,9 @@ struct AssemblyRequest {
   // only the running watch) — a twin seen in it fails assembly with kBusy before any device is
   // opened.
   std::optional<Duration> twin_check;
+  // The start-up check ends before the window once discovery has been quiet this long (and no
+  // older hub without an identity is on the domain): StartupCheck in twin_rules.h.
+  Duration twin_quiet = kDefaultTwinCheckQuiet;
   // Called from the cycle when this hub must stop because an earlier twin runs (thread-safe,
   // allocation-free, e.g. CycleRunner::request_stop).
   std::function<void()> request_stop;
@@ -69,8 +77,9 @@ Expected<CheckedHub> check_hub(const AssemblyRequest& request);
 struct AssembledHub {
   hal::BoardConfig board;
   config::HubConfig config;
-  std::unique_ptr<hal::Backend> backend;
-  hal::fake::FakeBackend* fake = nullptr;  // the backend, when it is the fake one (test hooks)
+  std::unique_ptr<Simulation::SimulatedBackend> simulated;  // owns the backend on a simulated board
+  std::unique_ptr<hal::Backend> backend;                    // else the backend
+  hal::Backend* devices = nullptr;                          // the backend in use, either way
   std::optional<dds::Participant> participant;
   std::unique_ptr<TwinWatch> twin_watch;                  // when request.twin_check: uses the participant
   std::unique_ptr<hub_api::Subscriptions> subscriptions;  // its readers use the participant; the nodes use it

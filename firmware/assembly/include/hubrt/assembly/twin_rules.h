@@ -25,10 +25,19 @@
 
 namespace hubrt::assembly {
 
-// The participant USER_DATA a hub publishes: "hubrt.started_ns=<ns>;". Allocates.
+// The start stamp alone: "hubrt.started_ns=<ns>;" (what hubs before the identity below sent).
+// Allocates.
 std::string start_stamp_user_data(std::int64_t started_ns);
+// The participant USER_DATA a hub publishes: its start stamp and which hub it is,
+// "hubrt.started_ns=<ns>;hubrt.hub=<ros_namespace>/<hub>;". The identity travels in SPDP, so
+// another hub knows it is a twin as soon as it discovers the participant, before any endpoint
+// (SEDP) arrives. Allocates.
+std::string hub_user_data(std::int64_t started_ns, std::string_view ros_namespace, std::string_view hub);
 // The start stamp in a participant's USER_DATA; nullopt when it carries none (not a hub).
 std::optional<std::int64_t> parse_start_stamp(std::string_view user_data) noexcept;
+// The hub identity "<ros_namespace>/<hub>" in a participant's USER_DATA; nullopt when it carries
+// none (not a hub, or a hub of an older hubrt that sent only its start stamp).
+std::optional<std::string_view> parse_hub_identity(std::string_view user_data) noexcept;
 
 struct HubStamp {
   std::int64_t started_ns = 0;
@@ -71,6 +80,45 @@ TwinSnapshot summarize_twins(const std::vector<dds::WatchedWriter>& writers);
 
 // "host pi-tool pid 4242", or "participant <guid>" when DDS gave neither.
 void describe_origin(const TwinPeer& peer, runtime::TextBuffer<128>& out) noexcept;
+
+// The start-up check's verdict on what discovery has shown so far. Deterministic: time passed in.
+// Rules (docs/twin-hubs.md, "Start-up check"):
+//   - twin: a writer of this hub's States was seen, or a participant announced this hub's identity
+//     in its USER_DATA (the verdict then waits up to `quiet` for its writers, to name them);
+//   - alone: discovery has settled — no participant was newly discovered for `quiet` since the
+//     check began (Cyclone answers a new participant's SPDP at once: SPDPResponseMaxDelay is 0 ms
+//     by default, q_ddsi_discovery.c respond_to_spdp), and every hub discovered so far said which
+//     hub it is (an older hub that sent only its start stamp could be a twin whose endpoints have
+//     not arrived yet: that one makes the check wait out the whole window);
+//   - alone as well once the window is over.
+enum class StartupVerdict : std::uint8_t { kWait, kAlone, kTwin };
+
+class StartupCheck {
+ public:
+  // `identity`: this hub's "<ros_namespace>/<hub>"; the check begins at `begin`.
+  StartupCheck(std::string identity, Time begin, Duration window, Duration quiet)
+      : identity_(std::move(identity)), begin_(begin), last_new_(begin), window_(window), quiet_(quiet) {}
+
+  // `participants`: every other participant known now; `discovered`: how many were newly
+  // discovered since the watch began (grows); `twin_writers`: writers of this hub's States seen.
+  StartupVerdict update(const std::vector<dds::WatchedParticipant>& participants, std::uint64_t discovered,
+                        std::size_t twin_writers, Time now);
+  // True when the verdict came from a participant's identity before any of its writers was seen.
+  [[nodiscard]] bool twin_by_identity() const noexcept { return claimed_; }
+  // The participant that announced this hub's identity (meaningful when twin_by_identity()).
+  [[nodiscard]] const dds::Guid& claimant() const noexcept { return claimant_; }
+
+ private:
+  std::string identity_;
+  Time begin_;
+  Time last_new_;
+  Duration window_;
+  Duration quiet_;
+  std::uint64_t discovered_ = 0;
+  bool claimed_ = false;
+  Time claimed_at_{};
+  dds::Guid claimant_{};
+};
 
 // Turns the twins seen each cycle into the hub's alerts and the verdict.
 // Thread-safety: one thread (the cycle).

@@ -22,12 +22,21 @@
 
 namespace hubrt::assembly {
 
-// Default discovery window of the start-up check. Cyclone answers a new participant's SPDP
+// Longest discovery window of the start-up check. Cyclone answers a new participant's SPDP
 // announcement at once and the endpoints (SEDP) follow: on loopback (ASan build, loaded 2-core
 // machine) the other hub's State writer showed up 2-6 ms after the watch started. 300 ms leaves
-// margin for a LAN and a loaded Pi; it adds as much to the time to the first State (conformance
-// allows 1 s). A hub that starts inside another's window is still caught by the running watch.
+// margin for a LAN and a loaded Pi. The check waits this long only while a hub of an older hubrt
+// (no identity in its USER_DATA) is on the domain; otherwise it ends once discovery has settled
+// (kDefaultTwinCheckQuiet, StartupCheck in twin_rules.h). A hub that starts inside another's
+// window is still caught by the running watch.
 inline constexpr Duration kDefaultTwinCheckWindow = std::chrono::milliseconds(300);
+// Discovery has settled when no participant was newly discovered for this long since the check
+// began. Every participant answers a new one's SPDP at once (Cyclone 0.10
+// src/core/ddsi/src/q_ddsi_discovery.c, respond_to_spdp: delay 0 with the default
+// Internal/SPDPResponseMaxDelay of 0 ms, ddsi_cfgelems.h), and a twin hub is known from that
+// answer alone (its identity is in its USER_DATA): on loopback the answers came within 1-3 ms
+// (loaded 2-core machine); 15 ms leaves margin for a LAN and a busy Pi.
+inline constexpr Duration kDefaultTwinCheckQuiet = std::chrono::milliseconds(15);
 // How long a twin that left stays in error_list (see TwinMonitor).
 inline constexpr Duration kTwinReportHold = std::chrono::seconds(10);
 
@@ -44,21 +53,23 @@ class TwinWatch {
   TwinWatch(const TwinWatch&) = delete;
   TwinWatch& operator=(const TwinWatch&) = delete;
 
-  // Waits up to `window` (returns as soon as a twin shows up). Errors: kBusy naming each twin's
-  // topic, host, pid and process, when another participant writes this hub's States.
+  // Watches discovery until StartupCheck (twin_rules.h) decides: at most `window`, less once
+  // discovery has been `quiet`. Errors: kBusy naming each twin's topic, host and pid, when
+  // another participant writes this hub's States or announces this hub's identity.
   // Blocks the calling thread: call it before opening devices, never from the cycle.
-  Expected<void> check_at_start(Duration window) const;
+  Expected<void> check_at_start(Duration window, Duration quiet = kDefaultTwinCheckQuiet) const;
 
   // Copies the current twins into `out` when they changed since `seen` (then updates `seen`).
   // Allocation-free: for the cycle.
   void copy_if_changed(std::uint64_t& seen, TwinSnapshot& out) const noexcept;
 
  private:
-  TwinWatch(std::string hub_name, std::shared_ptr<spdlog::logger> log)
-      : hub_name_(std::move(hub_name)), log_(std::move(log)) {}
+  TwinWatch(std::string hub_name, std::string identity, std::shared_ptr<spdlog::logger> log)
+      : hub_name_(std::move(hub_name)), identity_(std::move(identity)), log_(std::move(log)) {}
   void changed(const std::vector<dds::WatchedWriter>& writers);
 
   std::string hub_name_;
+  std::string identity_;  // "<ros_namespace>/<hub>", as hub_user_data() announces it
   std::shared_ptr<spdlog::logger> log_;
   mutable std::mutex mutex_;
   TwinSnapshot snapshot_;

@@ -35,6 +35,15 @@ struct WatchedWriter {
   bool operator==(const WatchedWriter&) const = default;
 };
 
+// Another participant as its SPDP announcement described it: known before any of its endpoints
+// (SEDP follows SPDP), which lets hubd recognise a twin hub by the identity in its USER_DATA as
+// soon as the participant is discovered.
+struct WatchedParticipant {
+  Guid key;
+  std::string user_data;  // its USER_DATA QoS, verbatim
+  bool operator==(const WatchedParticipant&) const = default;
+};
+
 // Says whether a DDS topic name is watched. Called on Cyclone's threads: pure, no blocking.
 using TopicFilter = std::function<bool(std::string_view dds_topic_name)>;
 // Receives the whole current list each time it changes (sorted by participant, then topic).
@@ -59,6 +68,12 @@ class WriterWatch {
 
   // The list as last reported. Allocates: not for the cycle.
   [[nodiscard]] std::vector<WatchedWriter> current() const;
+  // Every other participant alive as of the last discovery event (sorted by key), and how many
+  // participants were newly discovered since start (it only grows). Allocates: not for the cycle.
+  [[nodiscard]] std::vector<WatchedParticipant> participants() const;
+  [[nodiscard]] std::uint64_t participants_discovered() const noexcept {
+    return participants_discovered_.load(std::memory_order_acquire);
+  }
 
  private:
   WriterWatch(Guid self, TopicFilter filter, WritersChanged changed);
@@ -76,6 +91,8 @@ class WriterWatch {
   std::size_t publications_capacity_ = 64;
   mutable std::mutex current_mutex_;
   std::vector<WatchedWriter> current_;
+  std::vector<WatchedParticipant> participants_current_;
+  std::atomic<std::uint64_t> participants_discovered_{0};
   bool reported_ = false;
   std::atomic<bool> ready_{false};  // both readers exist: callbacks before that are ignored
   EntityHandle participants_;

@@ -1,0 +1,49 @@
+// What a hubd that runs simulated boards adds to the composition root: the fake HAL backend (the
+// board's device simulators, Modbus servers on loopback, virtual CAN) and the sim bridge stage
+// (/sim/input, /sim/fault, /sim/<hub>/signals). A hub on a real board needs none of it, so the
+// board build of hubd links no implementation (AssemblyRequest::simulation stays null) and the
+// simulated station's hubd links hubrt_assembly_sim (fake_simulation.h). Chosen at link time by
+// which program is built, never by #ifdef: boards stay data.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <spdlog/logger.h>
+
+#include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
+#include "hubrt/dds/participant.h"
+#include "hubrt/hal/backend.h"
+#include "hubrt/hal/board/board_config.h"
+#include "hubrt/runtime/hub.h"
+
+namespace hubrt::assembly {
+
+class Simulation {
+ public:
+  // The backend of a simulated board: hal::Backend plus whatever the bridge stage needs of it.
+  class SimulatedBackend {
+   public:
+    virtual ~SimulatedBackend() = default;
+    [[nodiscard]] virtual hal::Backend& backend() noexcept = 0;
+  };
+
+  virtual ~Simulation() = default;
+  // The fake backend of `board` (its simulation section), its simulators driven by `clock` (which
+  // must outlive it). Errors: the simulators' (e.g. a Modbus server port in use).
+  [[nodiscard]] virtual Expected<std::unique_ptr<SimulatedBackend>> open_backend(
+      const hal::BoardConfig& board, const Clock& clock) const = 0;
+  // The sim bridge stage of hub `hub_name` over `backend` (from open_backend, outliving the
+  // stage). Errors: the DDS entity that could not be created.
+  [[nodiscard]] virtual Expected<std::unique_ptr<runtime::CycleStage>> bridge(
+      const dds::Participant& participant, const std::string& hub_name, const hal::BoardConfig& board,
+      SimulatedBackend& backend, std::shared_ptr<spdlog::logger> log) const = 0;
+};
+
+// The message of a program built without a simulation that is asked to run a simulated board.
+inline constexpr std::string_view kNoSimulationHint =
+    "this hubd is the board build, linked without the fake backend and the simulators: run "
+    "simulated boards with the development build's hubd";
+
+}  // namespace hubrt::assembly
