@@ -20,6 +20,7 @@
 #include "hubrt/test_support/test_domain.h"
 
 #include "alloc_counter.h"
+#include "assembled_sim_dock.h"
 
 namespace hubrt {
 namespace {
@@ -49,13 +50,7 @@ TEST(HubProcessAllocations, NoneInSteadyStateWithSubscriberAndPlannerInOtherProc
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
   SystemClock clock;
-  assembly::AssemblyRequest request;
-  request.board_file = std::string(HUBRT_SOURCE_DIR) + "/boards/host-sim.yaml";
-  request.hub_file = std::string(HUBRT_SOURCE_DIR) + "/hubs/dock_ecu/dock_ecu.yaml";
-  request.backend = assembly::BackendKind::kFake;
-  request.domain = domain->config();
-  request.rate_hz = 1000;
-  auto assembled = assembly::assemble_hub(request, clock);
+  auto assembled = integration::assemble_sim_dock(*domain, clock, 1000);
   ASSERT_TRUE(assembled) << assembled.error().message;
   runtime::Hub& hub = *(*assembled)->hub;
 
