@@ -95,10 +95,10 @@ class FastDdsSecureInteropTest : public ::testing::Test {
   }
 
   void start_hub() {
-    std::string xml = domain_->cyclone_xml();
-    const auto end = xml.rfind("</Domain>");
-    ASSERT_NE(end, std::string::npos) << xml;
-    xml.insert(end, cyclone_security_xml(pki_, "hub"));
+    // A source of its own after the domain's (Cyclone reads comma-separated sources in order):
+    // the domain's configuration may hold several sources, one of them for another domain id.
+    const std::string xml = domain_->cyclone_xml() + ",<CycloneDDS><Domain id=\"any\">" +
+                            cyclone_security_xml(pki_, "hub") + "</Domain></CycloneDDS>";
     integration::HubProcessOptions options;
     options.extra_env = {{"CYCLONEDDS_URI", xml}};
     auto hub = integration::HubProcess::start(*domain_, options);
