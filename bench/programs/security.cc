@@ -31,10 +31,11 @@ Expected<std::string> make_pki(const std::string& dir) {
   const auto now = static_cast<std::int64_t>(::time(nullptr));
   const security::Validity validity{now - 3600, now + 24 * 3600};
   if (auto ok = security::init_station(dir, validity); !ok) return std::move(ok).error();
-  // As `hubctl security add ... --role hub --hub dock_ecu --sim`: the simulated hub's sim bridge too.
+  // As `hubctl security add ... --role hub --hub dock_ecu --sim` (firmware/hubctl/src/role_permissions.cc):
+  // the simulated hub's sim bridge too, which reads every /sim topic its bridge reads.
   if (auto ok = security::add_identity(
           dir, "dock_ecu", validity, {"rt/dock_ecu/dock/state", "rt/diagnostics", "rt/sim/dock_ecu/signals"},
-          {"rt/dock/command", "rt/sim/input", "rt/sim/fault"});
+          {"rt/dock/command", "rt/sim/input", "rt/sim/badge", "rt/sim/fault"});
       !ok) {
     return std::move(ok).error();
   }
