@@ -18,6 +18,7 @@
 #include "hubrt/test_support/child_process.h"
 #include "hubrt/test_support/test_domain.h"
 
+#include "probe_listener.h"
 #include "test_types_traits.h"
 
 namespace hubrt::test_support {
@@ -33,17 +34,8 @@ constexpr Duration kBound = seconds(30);
 TEST(TestDomainEnv, ChildProcessJoinsTheSameDomainOverLoopback) {
   auto domain = TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
-  auto participant = dds::Participant::create(domain->config(), "env_probe_test");
-  ASSERT_TRUE(participant) << participant.error().message;
-  auto topic = dds::Topic<Counter>::create(*participant, "/hubrt_test/probe");
-  ASSERT_TRUE(topic) << topic.error().message;
-  auto reader = dds::Reader<Counter>::create(*participant, *topic);
-  ASSERT_TRUE(reader) << reader.error().message;
-  auto condition = dds::ReadCondition::create(*reader);
-  ASSERT_TRUE(condition) << condition.error().message;
-  auto waitset = dds::WaitSet::create(*participant);
-  ASSERT_TRUE(waitset) << waitset.error().message;
-  ASSERT_TRUE(waitset->attach(*condition, 1));
+  ProbeListener listener;
+  ASSERT_NO_FATAL_FAILURE(open_probe_listener(*domain, "env_probe_test", listener));
 
   auto probe = ChildProcess::start(HUBRT_DDS_ENV_PROBE, {}, domain->env());
   ASSERT_TRUE(probe) << probe.error().message;
@@ -51,13 +43,13 @@ TEST(TestDomainEnv, ChildProcessJoinsTheSameDomainOverLoopback) {
       << probe->stdout_text() << probe->stderr_text();
 
   std::array<dds::WaitSet::Token, 2> fired{};
-  auto n = waitset->wait(fired, kBound);
+  auto n = listener.waitset->wait(fired, kBound);
   ASSERT_TRUE(n.is_ok());
   ASSERT_EQ(n.value(), 1u) << "no sample from the probe; its output:\n"
                            << probe->stdout_text() << probe->stderr_text();
   EXPECT_EQ(fired[0], 1);
   Counter sample{};
-  auto taken = reader->take_next(sample);
+  auto taken = listener.reader->take_next(sample);
   ASSERT_TRUE(taken.is_ok());
   ASSERT_TRUE(taken.value());
   EXPECT_EQ(sample.count, probe->pid());

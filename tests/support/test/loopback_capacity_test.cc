@@ -21,6 +21,7 @@
 #include "hubrt/test_support/child_process.h"
 #include "hubrt/test_support/test_domain.h"
 
+#include "probe_listener.h"
 #include "test_types_traits.h"
 
 namespace hubrt::test_support {
@@ -80,29 +81,23 @@ TEST(LoopbackCapacity, SixtyFourHubsHubctlAndAPlannerOnOneHostFindEachOther) {
   ASSERT_EQ(hubs.bound(), kHubs) << "the private domain's ports should be free";
 
   // The 65th participant (hubctl's place): index 64.
-  auto participant = dds::Participant::create(domain->config(), "loopback_capacity_test");
-  ASSERT_TRUE(participant) << "the 65th participant on the host: " << participant.error().message;
-  auto topic = dds::Topic<Counter>::create(*participant, "/hubrt_test/probe");
-  ASSERT_TRUE(topic) << topic.error().message;
-  auto reader = dds::Reader<Counter>::create(*participant, *topic);
-  ASSERT_TRUE(reader) << reader.error().message;
-  auto condition = dds::ReadCondition::create(*reader);
-  ASSERT_TRUE(condition) << condition.error().message;
-  auto waitset = dds::WaitSet::create(*participant);
-  ASSERT_TRUE(waitset) << waitset.error().message;
-  ASSERT_TRUE(waitset->attach(*condition, 1));
+  ProbeListener listener;
+  {
+    SCOPED_TRACE("the 65th participant on the host");
+    ASSERT_NO_FATAL_FAILURE(open_probe_listener(*domain, "loopback_capacity_test", listener));
+  }
 
   // The 66th (a planner's place), in another process: index 65. Its sample arriving shows both
   // joined and found each other through the unicast discovery peers of these high indices.
   auto probe = ChildProcess::start(HUBRT_DDS_ENV_PROBE, {}, domain->env());
   ASSERT_TRUE(probe) << probe.error().message;
   std::array<dds::WaitSet::Token, 1> fired{};
-  auto n = waitset->wait(fired, kBound);
+  auto n = listener.waitset->wait(fired, kBound);
   ASSERT_TRUE(n.is_ok());
   ASSERT_EQ(n.value(), 1u) << "no sample from the 66th participant; its output:\n"
                            << probe->stdout_text() << probe->stderr_text();
   Counter sample{};
-  auto taken = reader->take_next(sample);
+  auto taken = listener.reader->take_next(sample);
   ASSERT_TRUE(taken.is_ok());
   ASSERT_TRUE(taken.value());
   EXPECT_EQ(sample.count, probe->pid());
