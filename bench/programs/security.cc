@@ -11,6 +11,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <tuple>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -23,6 +25,7 @@
 #include "echo_peer.h"
 #include "proc_stats.h"
 #include "raw_dds.h"
+#include "role_permissions.h"
 
 namespace hubrt::bench {
 namespace {
@@ -31,16 +34,16 @@ Expected<std::string> make_pki(const std::string& dir) {
   const auto now = static_cast<std::int64_t>(::time(nullptr));
   const security::Validity validity{now - 3600, now + 24 * 3600};
   if (auto ok = security::init_station(dir, validity); !ok) return std::move(ok).error();
-  // As `hubctl security add ... --role hub --hub dock_ecu --sim` (firmware/hubctl/src/role_permissions.cc):
-  // the simulated hub's sim bridge too, which reads every /sim topic its bridge reads.
-  if (auto ok = security::add_identity(
-          dir, "dock_ecu", validity, {"rt/dock_ecu/dock/state", "rt/diagnostics", "rt/sim/dock_ecu/signals"},
-          {"rt/dock/command", "rt/sim/input", "rt/sim/badge", "rt/sim/fault"});
-      !ok) {
-    return std::move(ok).error();
-  }
-  if (auto ok = security::add_identity(dir, "planner", validity, {"rt/*/command"}, {"rt/*"}); !ok) {
-    return std::move(ok).error();
+  // The identities `hubctl security add` makes: the simulated Dock ECU (its sim bridge's topics
+  // too) and a planner, with the permissions of their roles.
+  for (const auto& [identity, role, hubs] :
+       {std::tuple{"dock_ecu", "hub", std::vector<std::string>{"dock_ecu"}},
+        std::tuple{"planner", "planner", std::vector<std::string>{}}}) {
+    auto topics = hubctl::role_permissions(role, hubs, /*simulation=*/true);
+    if (!topics) return std::move(topics).error();
+    if (auto ok = security::add_identity(dir, identity, validity, topics->publish, topics->subscribe); !ok) {
+      return std::move(ok).error();
+    }
   }
   return security::security_xml_for({dir, "planner"}, now);
 }
