@@ -18,10 +18,10 @@ endif()
 # whose property HUBRT_LTO is set (firmware/hubd: hubd_board). GCC's manual, "Optimize Options":
 # fat objects (-ffat-lto-objects) "contain both the intermediate language and the object code", and
 # with -fno-lto at link "no interprocedural optimizations are applied": the object code is linked as
-# without LTO. Without -fno-lto the linker plugin would optimise every program that links such
-# objects (the options are recorded in them), and the driver's spec drops the plugin whenever
-# -fno-lto is anywhere on the link line, so the LTO target must not get it at all (a generator
-# expression per target, not add_link_options(-fno-lto) plus -flto after it).
+# without LTO. Without -fno-lto the linker plugin optimises every program that links such objects
+# (the options are recorded in them: hubd_board linked with neither flag came out LTO-sized), and
+# with -fno-lto anywhere on the link line there is no LTO even with -flto after it (seen with
+# GCC 12), so each target gets exactly one of the two (docs/board-size.md).
 if(HUBRT_BOARD_LTO)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     message(FATAL_ERROR "HUBRT_BOARD_LTO needs GCC (fat LTO objects); the compiler is ${CMAKE_CXX_COMPILER_ID}")
