@@ -15,6 +15,7 @@ from report_echo import echo_section  # the command -> echo section (issue 16 po
 from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
 from report_scale import scale_section  # many hubs on one host (issue 16 point 6)
 from report_security import security_section  # bench/report_security.py, next to this file
+from report_size import size_section  # the board hubd's stripped size (issue 16 point 3)
 
 # DESIGN.md section 8: the ROS 1 rebuild of the paper's ECU, measured on this machine.
 ROS1_RSS_MB = 11.3
@@ -386,6 +387,7 @@ def main():
     scale_section(report, load(args.results, "scale.json"))
     ros1_section(report, load(args.results, "ros1.json"))
     security_section(report.sections, load(args.results, "security.json"))
+    size_section(report, load(args.results, "size.json"))
     drew = picture(args.results, args.picture)
     info = machine(args.results)
 

@@ -14,6 +14,22 @@ if(HUBRT_SANITIZE)
   add_link_options(${_hubrt_san_flags})
 endif()
 
+# HUBRT_BOARD_LTO (top-level CMakeLists.txt): IR in every object, no LTO at link except for a target
+# whose property HUBRT_LTO is set (firmware/hubd: hubd_board). GCC's manual, "Optimize Options":
+# fat objects (-ffat-lto-objects) "contain both the intermediate language and the object code", and
+# with -fno-lto at link "no interprocedural optimizations are applied": the object code is linked as
+# without LTO. Without -fno-lto the linker plugin optimises every program that links such objects
+# (the options are recorded in them: hubd_board linked with neither flag came out LTO-sized), and
+# with -fno-lto anywhere on the link line there is no LTO even with -flto after it (seen with
+# GCC 12), so each target gets exactly one of the two (docs/board-size.md).
+if(HUBRT_BOARD_LTO)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    message(FATAL_ERROR "HUBRT_BOARD_LTO needs GCC (fat LTO objects); the compiler is ${CMAKE_CXX_COMPILER_ID}")
+  endif()
+  add_compile_options(-flto=auto -ffat-lto-objects)
+  add_link_options("$<IF:$<BOOL:$<TARGET_PROPERTY:HUBRT_LTO>>,-flto=auto,-fno-lto>")
+endif()
+
 # hubrt_target_defaults(<target>): warnings (errors when HUBRT_WERROR) for our own code only.
 function(hubrt_target_defaults target)
   get_target_property(_type ${target} TYPE)

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Stripped size of the board hubd (target hubd_board: /usr/bin/hubd of the board packages) for
+each Raspberry Pi target, for bench/run and docs/benchmarks.md.
+
+For a target whose sysroot toolchain/prepare-target made, builds hubd_board in build/cross-<arch>
+(the cross presets' flags: -Os, LTO for this program only; configures the preset first when the
+folder has none), strips a copy with the cross binutils and records its size and the sizes of its
+sections. A target without a sysroot is recorded as not prepared.
+    bench/board_size.py --out FILE [--arch arm64 armhf] [--jobs N]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TRIPLETS = {"arm64": "aarch64-linux-gnu", "armhf": "arm-linux-gnueabihf"}
+# Sections reported one by one; the rest is summed as "other".
+GROUPS = {
+    "code": (".text", ".plt", ".init", ".fini"),
+    "unwind": (".eh_frame", ".eh_frame_hdr", ".gcc_except_table", ".ARM.exidx", ".ARM.extab"),
+    "constants": (".rodata",),
+    "data": (".data", ".data.rel.ro", ".init_array", ".fini_array", ".got", ".got.plt", ".dynamic"),
+    "dynamic linking": (".dynsym", ".dynstr", ".gnu.hash", ".gnu.version", ".gnu.version_r", ".rela.dyn",
+                        ".rela.plt", ".rel.dyn", ".rel.plt"),
+}
+
+
+def sysroot(arch):
+    base = os.environ.get("HUBRT_SYSROOTS", os.path.join(ROOT, "toolchain", ".sysroots"))
+    return os.path.join(base, arch)
+
+
+def cache_value(build, name):
+    with open(os.path.join(build, "CMakeCache.txt")) as f:
+        for line in f:
+            key, _, value = line.rstrip("\n").partition("=")
+            if key.split(":")[0] == name:
+                return value
+    return ""
+
+
+def sections(triplet, path):
+    """{section: bytes} of the sections that take room in the file (size -A; .bss takes none)."""
+    out = subprocess.run([f"{triplet}-size", "-A", path], check=True, capture_output=True, text=True).stdout
+    found = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 3 and parts[0].startswith(".") and parts[0] not in (".bss", ".tbss", ".comment"):
+            found[parts[0]] = int(parts[1])
+    return found
+
+
+def measure(arch, jobs):
+    triplet = TRIPLETS[arch]
+    if not os.path.exists(os.path.join(sysroot(arch), ".hubrt-sysroot")):
+        return {"arch": arch, "prepared": False}
+    build = os.path.join(ROOT, "build", f"cross-{arch}")
+    nice = ["nice", "-n", "19"]
+    if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
+        subprocess.run(nice + ["cmake", "--preset", f"cross-{arch}"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(nice + ["cmake", "--build", build, "-j", str(jobs), "--target", "hubd_board"], check=True,
+                   stdout=subprocess.DEVNULL)
+    program = os.path.join(build, "firmware", "hubd", "board", "hubd")
+    with tempfile.TemporaryDirectory() as scratch:
+        stripped = os.path.join(scratch, "hubd")
+        subprocess.run([f"{triplet}-strip", "-o", stripped, program], check=True)
+        size = os.path.getsize(stripped)
+        found = sections(triplet, stripped)
+    groups = {name: sum(found.get(s, 0) for s in members) for name, members in GROUPS.items()}
+    groups["other"] = sum(found.values()) - sum(groups.values())
+    return {
+        "arch": arch,
+        "prepared": True,
+        "stripped_bytes": size,
+        "groups": groups,
+        "flags": " ".join(filter(None, (cache_value(build, "CMAKE_CXX_FLAGS"),
+                                        cache_value(build, "CMAKE_CXX_FLAGS_RELWITHDEBINFO")))),
+        "board_lto": cache_value(build, "HUBRT_BOARD_LTO").upper() in ("ON", "TRUE", "1"),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--arch", nargs="+", default=["arm64", "armhf"], choices=sorted(TRIPLETS))
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    results = []
+    for arch in args.arch:
+        try:
+            results.append(measure(arch, args.jobs))
+        except (subprocess.CalledProcessError, OSError) as error:
+            print(f"board_size: {arch}: {error}", file=sys.stderr)
+            results.append({"arch": arch, "prepared": True, "error": str(error)})
+    with open(args.out, "w") as f:
+        json.dump({"targets": results}, f, indent=2)
+    for r in results:
+        figure = f"{r['stripped_bytes']} bytes" if "stripped_bytes" in r else r.get("error", "not prepared")
+        print(f"  {r['arch']}: {figure}")
+
+
+if __name__ == "__main__":
+    main()
