@@ -26,6 +26,7 @@ Expected<void*> load_module_symbol(const std::vector<std::string>& paths, std::s
     // Never dlclose()d: objects the module made run its code. Opening it again counts a reference.
     void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (module == nullptr) {
+      // NOLINTNEXTLINE(concurrency-mt-unsafe): glibc keeps dlerror()'s state per thread (dlerror(3)).
       const char* why = ::dlerror();
       tried += fmt::format("; {}", why != nullptr ? why : path);
       continue;

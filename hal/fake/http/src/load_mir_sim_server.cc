@@ -21,7 +21,7 @@ std::vector<std::string> default_mir_sim_module_paths() {
 
 Expected<std::unique_ptr<MirSimServer>> load_mir_sim_server(const std::vector<std::string>& module_paths,
                                                             MirPlatform& platform, const Clock& clock,
-                                                            MirSimServerOptions options) {
+                                                            const MirSimServerOptions& options) {
   auto symbol = load_module_symbol(module_paths, kMirSimModuleFileName, kMirSimStartSymbol);
   if (!symbol) {
     Error error = std::move(symbol).error();

@@ -65,6 +65,6 @@ std::vector<std::string> default_mir_sim_module_paths();
 // Errors: those of load_module_symbol (kUnavailable: no module), then of start_mir_sim_server.
 Expected<std::unique_ptr<MirSimServer>> load_mir_sim_server(const std::vector<std::string>& module_paths,
                                                             MirPlatform& platform, const Clock& clock,
-                                                            MirSimServerOptions options = {});
+                                                            const MirSimServerOptions& options = {});
 
 }  // namespace hubrt::hal::fake
