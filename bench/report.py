@@ -13,6 +13,7 @@ from collections import defaultdict
 
 from report_echo import echo_section  # the command -> echo section (issue 16 point 8)
 from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
+import report_rss  # memory: where the RSS goes, the board build's row (issue 16 point 3)
 from report_scale import scale_section  # many hubs on one host (issue 16 point 6)
 from report_security import security_section  # bench/report_security.py, next to this file
 from report_size import size_section  # the board hubd's stripped size (issue 16 point 3)
@@ -218,15 +219,7 @@ def heartbeat_section(report, heartbeat):
                    "publishes /diagnostics at 1 Hz and runs the simulation bridge of the fake backend; "
                    f"/proc counts CPU time in 10 ms ticks, so over this {at100['window_s']:g} s window a figure is "
                    f"+-{1.0 / at100['window_s']:.2f} %.")
-        rss_why = (f"{rss:.1f} MB, of which a bare Cyclone participant with one writer already takes {raw_rss:.1f} MB "
-                   "here (ENVIRONMENT.md: about 7.5 MB per participant). The rest, by /proc/<pid>/smaps: loading "
-                   "Debian's libcpp-httplib (the Linux backend's HTTP client, built with OpenSSL) initialises "
-                   "OpenSSL with all its error strings, +1.7 MB of libcrypto pages in every hubd; the hubd binary "
-                   "itself (the development build measured here also holds the simulators); spdlog, yaml-cpp, "
-                   "libsystemd and the device libraries; the per-node buffers and the extra DDS readers and "
-                   "writers (commands, diagnostics, the simulation bridge). Cyclone's own share is the same in both "
-                   "(libddsc, its threads' stacks); hubd bounds its receive buffers at 192 KiB (the bare writer "
-                   "keeps Cyclone's 1 MiB) and trims its heap after start-up.")
+        rss_why = report_rss.rss_why(rss, raw_rss)
         report.aim("<= 9 MB RSS per hub at 100 Hz", f"{rss:.1f} MB (bare Cyclone writer: {raw_rss:.1f} MB)",
                    rss <= 9.0, rss_why)
         report.aim("RSS <= a bare Cyclone writer of the same State (100 Hz, same run)",
@@ -382,6 +375,7 @@ def main():
     cycle_section(report, load(args.results, "cycle.json"))
     echo_section(report, load(args.results, "echo.json"), load(args.results, "ros1.json"))
     heartbeat_section(report, load(args.results, "heartbeat.json"))
+    report_rss.board_rss_aims(report, load(args.results, "heartbeat_board.json"))
     realtime_section(report, load(args.results, "heartbeat.json"), load(args.results, "heartbeat_realtime.json"))
     startup_section(report, load(args.results, "startup.json"))
     scale_section(report, load(args.results, "scale.json"))

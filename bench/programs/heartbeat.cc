@@ -103,11 +103,12 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
 }
 
 Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, double window_s,
-                                         std::ofstream& periods, const std::vector<std::string>& hubd_args) {
+                                         std::ofstream& periods, const std::vector<std::string>& hubd_args,
+                                         bool board_build) {
   const double period = 1.0 / rate;
   std::vector<std::string> args = {"--hub", "dock_ecu", "--rate", fmt::format("{}", rate)};
   args.insert(args.end(), hubd_args.begin(), hubd_args.end());
-  auto hub = start_hubd(args);
+  auto hub = board_build ? start_board_hubd(args) : start_hubd(args);
   if (!hub) return std::move(hub).error();
   auto raw = start_raw_peer({"heartbeat", "--rate", fmt::format("{}", rate)});
   if (!raw) return std::move(raw).error();
@@ -157,6 +158,8 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   out["rate_hz"] = rate;
   out["window_s"] = window_s;
   out["hubd_args"] = hubd_args;
+  out["hubd"] =
+      board_build ? "board build, rpi4-dock-ecu, linux backend" : "development build, host-sim, fake backend";
   out["hub"] = describe(streams[0], period, window_s, *hub_before, *hub_after, cpu_window, periods, rate);
   out["raw"] = describe(streams[1], period, window_s, *raw_before, *raw_after, cpu_window, periods, rate);
   const auto ratio = [&](const char* series, const char* stat) {
@@ -173,7 +176,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
 }
 
 int run(const std::string& out_file, const std::string& periods_file, const std::vector<double>& rates,
-        double window_s, const std::vector<std::string>& hubd_args) {
+        double window_s, const std::vector<std::string>& hubd_args, bool board_build) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
   auto participant = raw_participant(domain->domain_id());
@@ -184,7 +187,7 @@ int run(const std::string& out_file, const std::string& periods_file, const std:
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
     progress(fmt::format("heartbeat: hub and bare clock_nanosleep loop at {} Hz for {} s", rate, window_s));
-    auto measured = measure(*participant, rate, window_s, periods, hubd_args);
+    auto measured = measure(*participant, rate, window_s, periods, hubd_args, board_build);
     if (!measured) return fmt::print(stderr, "{}\n", measured.error().message), 1;
     progress(
         fmt::format("heartbeat {} Hz: stamp jitter p99 hub {:.3f} ms, raw {:.3f} ms; CPU hub {:.2f} %, raw "
@@ -216,6 +219,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> hubd_args;
   app.add_option("--hubd-arg", hubd_args,
                  "One more argument for hubd (repeatable), e.g. --hubd-arg=--realtime");
+  bool board_build = false;
+  app.add_flag("--board-build", board_build,
+               "Measure the board build of hubd (what the packages install) on rpi4-dock-ecu with the Linux "
+               "backend instead of the development build on host-sim (its devices are missing here)");
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, periods, rates, window_s, hubd_args);
+  return hubrt::bench::run(out, periods, rates, window_s, hubd_args, board_build);
 }

@@ -39,6 +39,7 @@ _hubrt_pkg_fact(HUBRT_PKG_HUB hub)
 _hubrt_pkg_fact(HUBRT_PKG_RATE_HZ rate_hz)
 _hubrt_pkg_fact(HUBRT_PKG_WATCHDOG_SEC watchdog_sec)
 _hubrt_pkg_fact(_pkg_gpio gpio)
+_hubrt_pkg_fact(_pkg_http http)
 string(JSON _pkg_can_count LENGTH "${_pkg_facts}" can)
 string(JSON _pkg_serial_count LENGTH "${_pkg_facts}" serial_devices)
 string(JSON _pkg_input_count LENGTH "${_pkg_facts}" input_devices)
@@ -120,6 +121,15 @@ endforeach()
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
 # The board build of hubd (firmware/hubd: no fake backend, no simulators), installed as hubd.
 install(TARGETS hubd_board hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+# The HTTP client module (hal/linux/http: cpp-httplib and, through Debian's build of it, OpenSSL),
+# only for a board with REST devices; hubd loads it from ../lib/hubrt next to /usr/bin.
+set(_pkg_binaries usr/bin/hubd usr/bin/hubctl)
+set(_pkg_programs hubd_board hubctl)
+if(_pkg_http)
+  install(TARGETS hubrt_http_module LIBRARY DESTINATION usr/lib/hubrt ${_pkg_component})
+  list(APPEND _pkg_binaries usr/lib/hubrt/hubrt-http.so)
+  list(APPEND _pkg_programs hubrt_http_module)
+endif()
 if(HUBRT_PKG_HUB STREQUAL "operator_hub")
   install(TARGETS operator-enrol RUNTIME DESTINATION usr/bin ${_pkg_component})  # the allow-list's writer
 endif()
@@ -189,14 +199,14 @@ file(WRITE "${CPACK_PROJECT_CONFIG_FILE}"
      "set(HUBRT_PKG_SYSROOT [==[${HUBRT_SYSROOT}]==])\n"
      "set(HUBRT_PKG_DEB_ARCH [==[${HUBRT_TARGET_DEB_ARCH}]==])\n"
      "set(HUBRT_PKG_DEB_DEPENDS_EXTRA [==[${HUBRT_PKG_DEB_DEPENDS_EXTRA}]==])\n"
-     "set(HUBRT_PKG_BINARIES usr/bin/hubd usr/bin/hubctl)\n")
+     "set(HUBRT_PKG_BINARIES ${_pkg_binaries})\n")
 include(CPack)
 
-# cmake --build <dir> --target hubrt-deb: builds hubd (its board build, hubd_board) and hubctl
-# (nothing else) and packs them.
+# cmake --build <dir> --target hubrt-deb: builds hubd (its board build, hubd_board), hubctl and,
+# for a board with REST devices, the HTTP client module (nothing else) and packs them.
 add_custom_target(hubrt-deb
   COMMAND "${CMAKE_CPACK_COMMAND}" --config "${CMAKE_BINARY_DIR}/CPackConfig.cmake"
-  DEPENDS hubd_board hubctl
+  DEPENDS ${_pkg_programs}
   WORKING_DIRECTORY "${CMAKE_BINARY_DIR}"
   COMMENT "Packing hubrt-${HUBRT_PKG_BOARD} (${HUBRT_TARGET_DEB_ARCH})"
   VERBATIM)

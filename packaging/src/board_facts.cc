@@ -41,6 +41,7 @@ Expected<BoardFacts> package_facts(const hal::BoardConfig& board, const config::
   facts.rate_hz = hub.rate_hz;
   facts.watchdog = watchdog_for_rate(hub.rate_hz);
   facts.gpio = !board.inputs.empty() || !board.outputs.empty();
+  facts.http = !board.http.empty();
   for (const hal::BoardCanBus& can : board.can) {
     facts.can.push_back({can.config.bus, can.config.interface, can.config.bitrate});
   }
@@ -76,6 +77,7 @@ std::string to_json(const BoardFacts& facts) {
       {"rate_hz", facts.rate_hz},
       {"watchdog_sec", facts.watchdog.count()},
       {"gpio", facts.gpio},
+      {"http", facts.http},
       {"can", can},
       {"serial_devices", facts.serial_devices},
       {"input_devices", facts.input_devices},

@@ -122,6 +122,7 @@ TEST(PackageFacts, JsonCarriesEveryFact) {
   EXPECT_EQ(json.at("hub"), "tool_ecu");
   EXPECT_EQ(json.at("watchdog_sec"), 2);
   EXPECT_EQ(json.at("gpio"), true);
+  EXPECT_EQ(json.at("http"), false);
   EXPECT_EQ(json.at("can").at(0).at("interface"), "can0");
   EXPECT_EQ(json.at("can").at(0).at("bitrate"), 500000);
   EXPECT_TRUE(json.at("serial_devices").empty());
@@ -134,6 +135,15 @@ TEST(PackageFacts, AnRfidReaderNeedsItsDeviceGroup) {
   EXPECT_EQ(facts->input_devices, std::vector<std::string>{"/dev/input/by-id/usb-rfid-reader-event-kbd"});
   EXPECT_TRUE(facts->serial_devices.empty());
   EXPECT_TRUE(facts->gpio);
+  EXPECT_FALSE(facts->http);
+}
+
+// Only a board with REST devices gets the HTTP client module (and libcpp-httplib's Depends).
+TEST(PackageFacts, TheMirBoardNeedsTheHttpModule) {
+  auto facts = package_facts(shipped_board("arm64-mir-com"), shipped_hub("mir_com"));
+  ASSERT_TRUE(facts) << facts.error().message;
+  EXPECT_TRUE(facts->http);
+  EXPECT_FALSE(facts->gpio);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/hal/common/debounced_input.h"
-#include "hubrt/hal/httplib/open_httplib.h"
+#include "hubrt/hal/httplib/open_http_module.h"
 #include "hubrt/hal/libmodbus/open_libmodbus.h"
 
 namespace hubrt::hal::fake {
@@ -177,7 +177,7 @@ Expected<void> FakeBackend::build_http() {
     options.address = http->config.host;
     options.port = http->config.port;
     options.base_path = http->config.base_path;
-    auto server = MirSimServer::start(*mir.platform, clock_, options);
+    auto server = load_mir_sim_server(default_mir_sim_module_paths(), *mir.platform, clock_, options);
     if (!server) {
       Error error = std::move(server).error();
       error.message =
@@ -228,7 +228,7 @@ Expected<std::unique_ptr<HttpClient>> FakeBackend::open_http(const HttpConfig& c
   HttpConfig connected = config;
   connected.host = mir->host;
   connected.port = mir->server->port();
-  return httplib_client::open_httplib(connected);
+  return httplib_client::open_http_module_client(httplib_client::default_http_module_paths(), connected);
 }
 
 MirPlatform* FakeBackend::mir_platform(std::string_view http_device) noexcept {

@@ -1,43 +1,62 @@
+// The MiR simulator's REST server on cpp-httplib (start_mir_sim_server), built into the module
+// hubrt-mir-sim.so and the simulator's tests.
 #include "hubrt/hal/fake/mir_sim_server.h"
 
 #include <httplib.h>
 
+#include <atomic>
+#include <mutex>
+#include <thread>
+
 #include <fmt/format.h>
 
 namespace hubrt::hal::fake {
+namespace {
 
-Result<MirServerFault> parse_mir_fault(std::string_view name) noexcept {
-  if (name == "answer") return MirServerFault::kNone;
-  if (name == "server_error") return MirServerFault::kServerError;
-  if (name == "unauthorized") return MirServerFault::kUnauthorized;
-  if (name == "slow") return MirServerFault::kSlow;
-  if (name == "stop_answering") return MirServerFault::kNoAnswer;
-  if (name == "malformed_json") return MirServerFault::kMalformedJson;
-  return Status(ErrorCode::kNotFound);
-}
-
-MirSimServer::MirSimServer(MirPlatform& platform, const Clock& clock, MirSimServerOptions options)
-    : platform_(platform), clock_(clock), options_(std::move(options)), port_(options_.port) {}
-
-Expected<std::unique_ptr<MirSimServer>> MirSimServer::start(MirPlatform& platform, const Clock& clock,
-                                                            MirSimServerOptions options) {
-  if (!options.address.starts_with("127.")) {
-    return make_error(ErrorCode::kInvalidArgument,
-                      fmt::format("MiR simulator: '{}' is not a loopback address", options.address));
+class HttplibMirSimServer final : public MirSimServer {
+ public:
+  HttplibMirSimServer(MirPlatform& platform, const Clock& clock, MirSimServerOptions options)
+      : platform_(platform), clock_(clock), options_(std::move(options)), port_(options_.port) {}
+  ~HttplibMirSimServer() override {
+    stopping_.store(true);
+    const std::lock_guard lock(lifecycle_mutex_);
+    stop_locked();
   }
-  std::unique_ptr<MirSimServer> server(new MirSimServer(platform, clock, std::move(options)));
-  const std::lock_guard lock(server->lifecycle_mutex_);
-  if (auto ok = server->listen(); !ok) return std::move(ok).error();
-  return server;
-}
+  HttplibMirSimServer(const HttplibMirSimServer&) = delete;
+  HttplibMirSimServer& operator=(const HttplibMirSimServer&) = delete;
 
-MirSimServer::~MirSimServer() {
-  stopping_.store(true);
-  const std::lock_guard lock(lifecycle_mutex_);
-  stop_locked();
-}
+  // Precondition: lifecycle_mutex_ is not held.
+  Expected<void> start() {
+    const std::lock_guard lock(lifecycle_mutex_);
+    return listen();
+  }
 
-void MirSimServer::install_handlers(httplib::Server& server) {
+  [[nodiscard]] std::uint16_t port() const noexcept override { return port_; }
+  void set_fault(MirServerFault fault) noexcept override { fault_.store(fault); }
+  [[nodiscard]] MirServerFault fault() const noexcept override { return fault_.load(); }
+  void go_down() override;
+  Expected<void> come_back() override;
+  [[nodiscard]] bool is_up() const override;
+  [[nodiscard]] std::uint64_t requests() const noexcept override { return requests_.load(); }
+
+ private:
+  Expected<void> listen();  // with lifecycle_mutex_ held
+  void stop_locked();
+  void install_handlers(httplib::Server& server);
+
+  MirPlatform& platform_;
+  const Clock& clock_;
+  const MirSimServerOptions options_;
+  std::uint16_t port_ = 0;
+  std::atomic<MirServerFault> fault_{MirServerFault::kNone};
+  std::atomic<bool> stopping_{false};
+  std::atomic<std::uint64_t> requests_{0};
+  mutable std::mutex lifecycle_mutex_;
+  std::unique_ptr<httplib::Server> server_;  // guarded by lifecycle_mutex_
+  std::thread thread_;                       // guarded by lifecycle_mutex_
+};
+
+void HttplibMirSimServer::install_handlers(httplib::Server& server) {
   const auto serve = [this](std::string_view method) {
     return [this, method](const httplib::Request& req, httplib::Response& res) {
       requests_.fetch_add(1);
@@ -83,7 +102,7 @@ void MirSimServer::install_handlers(httplib::Server& server) {
   server.Delete(pattern, serve("DELETE"));
 }
 
-Expected<void> MirSimServer::listen() {
+Expected<void> HttplibMirSimServer::listen() {
   auto server = std::make_unique<httplib::Server>();
   install_handlers(*server);
   if (port_ == 0) {
@@ -109,29 +128,42 @@ Expected<void> MirSimServer::listen() {
   return {};
 }
 
-void MirSimServer::stop_locked() {
+void HttplibMirSimServer::stop_locked() {
   if (server_ == nullptr) return;
   server_->stop();
   if (thread_.joinable()) thread_.join();
   server_.reset();
 }
 
-void MirSimServer::go_down() {
+void HttplibMirSimServer::go_down() {
   const std::lock_guard lock(lifecycle_mutex_);
   stopping_.store(true);  // ends requests held by kNoAnswer or kSlow, so that stop() can join them
   stop_locked();
   stopping_.store(false);
 }
 
-Expected<void> MirSimServer::come_back() {
+Expected<void> HttplibMirSimServer::come_back() {
   const std::lock_guard lock(lifecycle_mutex_);
   if (server_ != nullptr) return {};
   return listen();
 }
 
-bool MirSimServer::is_up() const {
+bool HttplibMirSimServer::is_up() const {
   const std::lock_guard lock(lifecycle_mutex_);
   return server_ != nullptr;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<MirSimServer>> start_mir_sim_server(MirPlatform& platform, const Clock& clock,
+                                                             MirSimServerOptions options) {
+  if (!options.address.starts_with("127.")) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("MiR simulator: '{}' is not a loopback address", options.address));
+  }
+  auto server = std::make_unique<HttplibMirSimServer>(platform, clock, std::move(options));
+  if (auto ok = server->start(); !ok) return std::move(ok).error();
+  return std::unique_ptr<MirSimServer>(std::move(server));
 }
 
 }  // namespace hubrt::hal::fake

@@ -30,7 +30,7 @@ class MirHttpTest : public ::testing::Test {
     platform_->add_position("home", 0, 0, 0);
     MirSimServerOptions options;
     options.slow_delay = milliseconds(1500);
-    auto server = MirSimServer::start(*platform_, clock_, options);
+    auto server = start_mir_sim_server(*platform_, clock_, options);
     ASSERT_TRUE(server) << server.error().message;
     server_ = std::move(*server);
     device_ = open(std::string(kAuthorization), 64 * 1024);

@@ -1,4 +1,8 @@
 // On this machine (no GPIO in the kernel) the backend must fail cleanly and at once.
+#include <fstream>
+#include <sstream>
+#include <string>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -8,6 +12,22 @@ namespace hubrt::hal {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string own_mappings() {
+  std::ifstream maps("/proc/self/maps");
+  std::stringstream text;
+  text << maps.rdbuf();
+  return text.str();
+}
+
+HttpConfig mir_config() {
+  HttpConfig config;
+  config.device = "mir";
+  config.host = "127.0.0.1";
+  config.port = 8080;
+  return config;
+}
 
 TEST(LinuxBackend, MissingGpioChipIsAClearErrorForDebouncedInputs) {
   LinuxBackend backend;
@@ -55,6 +75,45 @@ TEST(LinuxBackend, ModbusGoesToLibmodbus) {
   ASSERT_FALSE(client.is_ok());
   EXPECT_EQ(client.error().code, ErrorCode::kInvalidArgument);
   EXPECT_THAT(client.error().message, HasSubstr("lift_drive"));
+}
+
+// cpp-httplib (and the OpenSSL initialisation Debian's build of it does) is not in a process that
+// opens no HTTP device: the module hubrt-http.so brings it in with the first open_http. Before the
+// module, every program linking the Linux backend had libcpp-httplib among its ELF NEEDED.
+// One test for both halves: the order matters and a process cannot unload the module again.
+TEST(LinuxBackend, HttpClientLibraryIsLoadedOnlyWhenAnHttpDeviceIsOpened) {
+  LinuxBackend backend;
+  EXPECT_THAT(own_mappings(), Not(HasSubstr("libcpp-httplib"))) << "linked in, not loaded on demand";
+  auto client = backend.open_http(mir_config());  // connects nothing until a request is sent
+  ASSERT_TRUE(client.is_ok()) << client.error().message;
+  EXPECT_THAT(own_mappings(), HasSubstr("libcpp-httplib"));
+  EXPECT_THAT(own_mappings(), HasSubstr("hubrt-http.so"));
+  // The module's own checks still apply.
+  HttpConfig no_host = mir_config();
+  no_host.host.clear();
+  auto refused = backend.open_http(no_host);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_THAT(refused.error().message, HasSubstr("no host"));
+}
+
+TEST(LinuxBackend, MissingHttpModuleIsAClearErrorNamingTheDeviceAndThePaths) {
+  LinuxBackend backend({"/nonexistent/lib/hubrt/hubrt-http.so"});
+  auto client = backend.open_http(mir_config());
+  ASSERT_FALSE(client.is_ok());
+  EXPECT_EQ(client.error().code, ErrorCode::kUnavailable);
+  EXPECT_THAT(client.error().message, HasSubstr("mir (http://127.0.0.1:8080)"));
+  EXPECT_THAT(client.error().message, HasSubstr("the module hubrt-http.so is not installed"));
+  EXPECT_THAT(client.error().message, HasSubstr("/nonexistent/lib/hubrt/hubrt-http.so"));
+}
+
+TEST(LinuxBackend, AFileWithoutTheEntryPointIsNotTakenForTheHttpModule) {
+  // libm is a shared object that loads but is no hubrt module.
+  LinuxBackend backend({"libm.so.6"});
+  auto client = backend.open_http(mir_config());
+  ASSERT_FALSE(client.is_ok());
+  EXPECT_EQ(client.error().code, ErrorCode::kInternal);
+  EXPECT_THAT(client.error().message, HasSubstr("hubrt_http_module_open_v1"));
 }
 
 }  // namespace

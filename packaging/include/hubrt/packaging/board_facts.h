@@ -28,6 +28,7 @@ struct BoardFacts {
   double rate_hz = 0;
   std::chrono::seconds watchdog{0};         // WatchdogSec= of the unit
   bool gpio = false;                        // the hub opens GPIO chips: the service needs group gpio
+  bool http = false;                        // REST devices: the package installs hubrt-http.so
   std::vector<PackagedCanInterface> can;    // one systemd-networkd .network file each
   std::vector<std::string> serial_devices;  // Modbus RTU and serial RFID readers: group dialout
   std::vector<std::string> input_devices;   // RFID keyboard-wedge readers (evdev): group input

@@ -4,21 +4,15 @@
 // refused connection, malformed JSON.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
+#include <vector>
 
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
 #include "hubrt/hal/fake/mir_platform.h"
-
-namespace httplib {
-class Server;
-}
 
 namespace hubrt::hal::fake {
 
@@ -41,41 +35,36 @@ struct MirSimServerOptions {
   Duration slow_delay = std::chrono::seconds(3);
 };
 
-// Thread-safe. The platform and clock must outlive it.
+// Thread-safe. The platform and clock must outlive it. An interface: the server runs on
+// cpp-httplib, which lives in the module hubrt-mir-sim.so (load_mir_sim_server), so that a
+// simulated hub without a MiR never maps it.
 class MirSimServer {
  public:
-  // Errors: kInvalidArgument (not a loopback IPv4 address), kBusy (the port is taken).
-  static Expected<std::unique_ptr<MirSimServer>> start(MirPlatform& platform, const Clock& clock,
-                                                       MirSimServerOptions options = {});
-  ~MirSimServer();
-  MirSimServer(const MirSimServer&) = delete;
-  MirSimServer& operator=(const MirSimServer&) = delete;
+  virtual ~MirSimServer() = default;
 
-  [[nodiscard]] std::uint16_t port() const noexcept { return port_; }
-  void set_fault(MirServerFault fault) noexcept { fault_.store(fault); }
-  [[nodiscard]] MirServerFault fault() const noexcept { return fault_.load(); }
+  [[nodiscard]] virtual std::uint16_t port() const noexcept = 0;
+  virtual void set_fault(MirServerFault fault) noexcept = 0;
+  [[nodiscard]] virtual MirServerFault fault() const noexcept = 0;
   // Fault: the server goes away (connections refused) / comes back on the same port.
-  void go_down();
-  Expected<void> come_back();
-  [[nodiscard]] bool is_up() const;
-  [[nodiscard]] std::uint64_t requests() const noexcept { return requests_.load(); }
-
- private:
-  MirSimServer(MirPlatform& platform, const Clock& clock, MirSimServerOptions options);
-  Expected<void> listen();  // with lifecycle_mutex_ held
-  void stop_locked();
-  void install_handlers(httplib::Server& server);
-
-  MirPlatform& platform_;
-  const Clock& clock_;
-  const MirSimServerOptions options_;
-  std::uint16_t port_ = 0;
-  std::atomic<MirServerFault> fault_{MirServerFault::kNone};
-  std::atomic<bool> stopping_{false};
-  std::atomic<std::uint64_t> requests_{0};
-  mutable std::mutex lifecycle_mutex_;
-  std::unique_ptr<httplib::Server> server_;  // guarded by lifecycle_mutex_
-  std::thread thread_;                       // guarded by lifecycle_mutex_
+  virtual void go_down() = 0;
+  virtual Expected<void> come_back() = 0;
+  [[nodiscard]] virtual bool is_up() const = 0;
+  [[nodiscard]] virtual std::uint64_t requests() const noexcept = 0;
 };
+
+// Starts a server in this process (hubrt_hal_fake_http_server, which links cpp-httplib: the module
+// and the simulator's own tests). Errors: kInvalidArgument (not a loopback IPv4 address), kBusy
+// (the port is taken).
+Expected<std::unique_ptr<MirSimServer>> start_mir_sim_server(MirPlatform& platform, const Clock& clock,
+                                                             MirSimServerOptions options = {});
+
+// <program>/../lib/hubrt/hubrt-mir-sim.so, then (native builds) the module of the build tree.
+std::vector<std::string> default_mir_sim_module_paths();
+
+// start_mir_sim_server through the first of `module_paths` that loads (hal/common/module_loader.h).
+// Errors: those of load_module_symbol (kUnavailable: no module), then of start_mir_sim_server.
+Expected<std::unique_ptr<MirSimServer>> load_mir_sim_server(const std::vector<std::string>& module_paths,
+                                                            MirPlatform& platform, const Clock& clock,
+                                                            const MirSimServerOptions& options = {});
 
 }  // namespace hubrt::hal::fake

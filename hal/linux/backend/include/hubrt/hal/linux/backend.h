@@ -1,29 +1,40 @@
 // The Backend for real hardware: GPIO through libgpiod v1, CAN through SocketCAN raw sockets,
-// Modbus through libmodbus, HTTP (REST devices) through cpp-httplib.
+// Modbus through libmodbus, HTTP (REST devices) through cpp-httplib in a module loaded on demand.
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include "hubrt/hal/backend.h"
 
 namespace hubrt::hal {
 
-// Stateless: every open_* call opens its device on its own; devices may outlive nothing but the
-// backend (they do not use it, but the Backend contract says so). Inputs with a debounce window
-// come wrapped in DebouncedInput. Errors are those of open_gpiod_input / open_gpiod_output
-// (gpiod_lines.h), socketcan::open_socketcan (can/) and libmodbus::open_libmodbus (modbus/: a
-// TCP drive that does not answer yet still gives a client, which reconnects); see backend.h.
-// Thread-safety: as Backend.
+// Stateless but for where the HTTP module is looked for: every open_* call opens its device on its own;
+// devices may outlive nothing but the backend (they do not use it, but the Backend contract says so). Inputs
+// with a debounce window come wrapped in DebouncedInput. Errors are those of open_gpiod_input /
+// open_gpiod_output (gpiod_lines.h), socketcan::open_socketcan (can/) and libmodbus::open_libmodbus (modbus/:
+// a TCP drive that does not answer yet still gives a client, which reconnects); see backend.h. Thread-safety:
+// as Backend.
 class LinuxBackend final : public Backend {
  public:
-  LinuxBackend() = default;
+  // The HTTP client module is looked for where httplib_client::default_http_module_paths() says.
+  LinuxBackend();
+  // ... or in `http_module_paths`, in order (tests: a module that is not there).
+  explicit LinuxBackend(std::vector<std::string> http_module_paths);
 
   Expected<std::unique_ptr<DigitalInput>> open_input(const DigitalInputConfig& config) override;
   Expected<std::unique_ptr<DigitalOutput>> open_output(const DigitalOutputConfig& config) override;
   Expected<std::unique_ptr<CanBus>> open_can(const CanConfig& config) override;
   Expected<std::unique_ptr<ModbusClient>> open_modbus(const ModbusConfig& config) override;
-  // cpp-httplib (http/): errors of httplib_client::open_httplib.
+  // cpp-httplib in the module hubrt-http.so, loaded by the first call (http/open_http_module.h):
+  // a hub without HTTP devices never maps libcpp-httplib. Errors of
+  // httplib_client::open_http_module_client (kUnavailable: the module is not installed).
   Expected<std::unique_ptr<HttpClient>> open_http(const HttpConfig& config) override;
   // libevdev or termios, as config.kind says: rfid::open_badge_reader (rfid/).
   Expected<std::unique_ptr<BadgeReader>> open_badge_reader(const BadgeReaderConfig& config) override;
+
+ private:
+  std::vector<std::string> http_module_paths_;
 };
 
 }  // namespace hubrt::hal

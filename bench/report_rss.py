@@ -1,0 +1,38 @@
+"""Memory (issue 16 point 3) for bench/report.py: why a hub's RSS exceeds the bare Cyclone writer's,
+and the board build's RSS row (hubrt_bench_heartbeat --board-build)."""
+
+# Where hubd's resident set goes beyond the bare writer's, by /proc/<pid>/smaps of both side by side
+# (x86, 100 Hz, Debian 12's libraries; docs: bench/README.md, "Memory").
+WHERE_IT_GOES = (
+    "The rest, by /proc/<pid>/smaps of both side by side: the hubd program's own code, about 1.6 MB resident "
+    "in the board build and 2.2 MB in the development build (which also holds the simulators): file pages of "
+    "the program that the kernel maps around every fault, most of them start-up code; spdlog (0.5 MB) and "
+    "yaml-cpp (0.3 MB), which the bare writer does not load; a heap 0.6 MB larger (board build: Cyclone's two "
+    "receive buffer pools, bounded at 192 KiB each and filled as datagrams arrive, the nodes' message storage, "
+    "the command, diagnostics and twin-check entities; the development build adds 0.4 MB of fake GPIO level "
+    "histories and the simulation bridge); libevdev, libgpiod, libmodbus and libsocketcan (0.2 MB). Cyclone's "
+    "own share is the same in both: libddsc, OpenSSL (libddsc itself needs libssl and libcrypto), iceoryx, its "
+    "threads' stacks. cpp-httplib, whose Debian build initialised OpenSSL's error strings (+1.7 MB of libcrypto "
+    "pages) in every hubd, is now loaded only by a hub with an HTTP device (the module hubrt-http.so).")
+
+
+def rss_why(rss, raw_rss, build="development"):
+    return (f"{rss:.1f} MB ({build} build), of which a bare Cyclone participant with one writer already takes "
+            f"{raw_rss:.1f} MB here (ENVIRONMENT.md: about 7.5 MB per participant). " + WHERE_IT_GOES)
+
+
+def board_rss_aims(report, heartbeat_board):
+    """The board build's RSS against the bare writer of the same run, at 100 Hz; nothing if not measured."""
+    if heartbeat_board is None:
+        return
+    at100 = next((e for e in heartbeat_board["rates"] if e["rate_hz"] == 100), None)
+    if at100 is None:
+        return
+    rss, raw_rss = at100["hub"]["rss_mb"], at100["raw"]["rss_mb"]
+    why = rss_why(rss, raw_rss, "board")
+    report.aim("<= 9 MB RSS per hub at 100 Hz (board build, rpi4-dock-ecu)",
+               f"{rss:.1f} MB (bare Cyclone writer: {raw_rss:.1f} MB)", rss <= 9.0, why,
+               alternative=f"bare Cyclone writer {raw_rss:.1f} MB")
+    report.aim("RSS <= a bare Cyclone writer of the same State (board build, 100 Hz, same run)",
+               f"{rss / raw_rss:.2f}x ({rss:.1f} vs {raw_rss:.1f} MB)", rss <= raw_rss, why,
+               alternative=f"bare Cyclone writer {raw_rss:.1f} MB")

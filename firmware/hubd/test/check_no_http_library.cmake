@@ -1,0 +1,24 @@
+# Fails when the program BINARY needs libcpp-httplib (an ELF NEEDED entry): hubd loads the HTTP
+# client module hubrt-http.so only when its board opens an HTTP device (hal/linux/http), so that a
+# hub without one does not map cpp-httplib nor run the OpenSSL initialisation Debian's build of it
+# does at load time (~2 MB of resident memory in every hubd, docs/benchmarks.md). The same check
+# on the module must fail (WILL_FAIL), which shows the pattern still matches the library's name.
+#   cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake
+if(NOT BINARY OR NOT READELF)
+  message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake")
+endif()
+execute_process(COMMAND "${READELF}" --dynamic "${BINARY}"
+                OUTPUT_VARIABLE dynamic ERROR_VARIABLE errors RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${READELF} --dynamic ${BINARY} failed: ${errors}")
+endif()
+string(REGEX MATCHALL "\\(NEEDED\\)[^\n]*\\[[^]\n]*\\]" needed "${dynamic}")
+if(NOT needed)
+  message(FATAL_ERROR "${BINARY}: no NEEDED entry found (not a dynamically linked program?)")
+endif()
+foreach(entry IN LISTS needed)
+  if(entry MATCHES "libcpp-httplib")
+    message(FATAL_ERROR "${BINARY} needs the HTTP client library: ${entry}")
+  endif()
+endforeach()
+message(STATUS "${BINARY}: no NEEDED entry for libcpp-httplib")
