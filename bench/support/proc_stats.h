@@ -1,4 +1,5 @@
-// CPU time and memory of a process, read from /proc/<pid>/stat and /proc/<pid>/status.
+// CPU time and memory of a process, read from /proc/<pid>/task/*/schedstat (or /proc/<pid>/stat)
+// and /proc/<pid>/status.
 #pragma once
 
 #include <sys/types.h>
@@ -8,7 +9,7 @@
 namespace hubrt::bench {
 
 struct ProcSample {
-  double cpu_s = 0;   // user + system time so far
+  double cpu_s = 0;   // time its threads ran so far (user + system)
   double rss_mb = 0;  // resident set now (VmRSS)
   double hwm_mb = 0;  // peak resident set (VmHWM)
   int threads = 0;

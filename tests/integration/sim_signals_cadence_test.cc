@@ -3,6 +3,7 @@
 // every 100 ms (kSimSignalsKeepAlive), not on every cycle: at 1 kHz that was a second DDS write per
 // cycle beside the State. An assembled Dock ECU (fake backend) runs 1000 cycles at 1 kHz with its
 // signals unchanged while a reader in this process counts the samples.
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -73,6 +74,72 @@ TEST(SimSignalsCadence, WrittenOnChangeAndKeepAliveNotEveryCycle) {
               std::chrono::duration<double, std::milli>(elapsed).count(), received, keep_alives);
   EXPECT_GE(received, 1u);
   EXPECT_LE(received, keep_alives);
+}
+
+// A ManualClock that counts how often the test's thread reads it. The fake GPIO reads the clock
+// once per level read or write (FakeGpio::advance brings its simulators to now), so the count per
+// cycle is how much of the simulated world a cycle touches. Reads from other threads (Cyclone's
+// listeners) are not counted, so the count is the same in every run.
+class CountingClock final : public Clock {
+ public:
+  [[nodiscard]] Instant now() const noexcept override {
+    if (std::this_thread::get_id() == owner_) reads_.fetch_add(1, std::memory_order_relaxed);
+    return manual_.now();
+  }
+  void advance(Duration by) noexcept { manual_.advance(by); }
+  [[nodiscard]] std::uint64_t reads() const noexcept { return reads_.load(); }
+
+ private:
+  ManualClock manual_;
+  std::thread::id owner_ = std::this_thread::get_id();
+  mutable std::atomic<std::uint64_t> reads_{0};
+};
+
+// Issue 16, point 4: while no reader of /sim/<hub>/signals is matched (a hub in the bench, a test
+// without the station model), the bridge does not even read the signals: a level read per signal,
+// each bringing every simulator up to now, for a sample nobody would receive. Once a reader
+// matches, it reads and writes them as before. On a manual clock: the clock reads per cycle without
+// a reader are fewer than with one, by at least one per signal of the board.
+TEST(SimSignalsCadence, NotReadWhileNobodyListens) {
+  auto domain = test_support::TestDomain::acquire();
+  ASSERT_TRUE(domain) << domain.error().message;
+  CountingClock clock;
+  auto assembled = integration::assemble_sim_dock(*domain, clock, 1000);
+  ASSERT_TRUE(assembled) << assembled.error().message;
+  runtime::Hub& hub = *(*assembled)->hub;
+  constexpr int kCycles = 100;
+  const auto clock_reads_per_cycle = [&] {
+    hub.cycle(clock.now());  // settles what the last change started (a new reader, a first cycle)
+    clock.advance(std::chrono::milliseconds(1));
+    const std::uint64_t before = clock.reads();
+    for (int i = 0; i < kCycles; ++i) {
+      hub.cycle(clock.now());
+      clock.advance(std::chrono::milliseconds(1));
+    }
+    return (clock.reads() - before) / kCycles;
+  };
+  const std::uint64_t unheard = clock_reads_per_cycle();
+
+  auto participant = dds::Participant::create(domain->config(), "signals_watcher");
+  ASSERT_TRUE(participant) << participant.error().message;
+  auto topic = dds::Topic<Signals>::create(*participant, sim::sim_signals_topic("dock_ecu"));
+  ASSERT_TRUE(topic) << topic.error().message;
+  auto reader = dds::Reader<Signals>::create(*participant, *topic, dds::Qos::ros2_default(5000));
+  ASSERT_TRUE(reader) << reader.error().message;
+  ASSERT_TRUE(reader->wait_for_writers(1, std::chrono::seconds(20)));
+  const std::uint64_t heard = clock_reads_per_cycle();
+
+  const auto signals =
+      static_cast<std::uint64_t>((*assembled)->board.inputs.size() + (*assembled)->board.outputs.size());
+  std::printf(
+      "[signals] clock reads per cycle: %llu with no reader of the signals, %llu with one (%llu signals)\n",
+      static_cast<unsigned long long>(unheard), static_cast<unsigned long long>(heard),
+      static_cast<unsigned long long>(signals));
+  EXPECT_GE(heard, unheard + signals) << "the bridge reads the signals even when nobody listens";
+  // The reader got the signals once it matched (the bridge writes at once for a new reader).
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // Cyclone's delivery, in this process
+  dds::Sample<Signals> sample;
+  EXPECT_TRUE(reader->take_next(sample).value_or(false));
 }
 
 }  // namespace

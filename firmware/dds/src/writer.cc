@@ -29,6 +29,7 @@ void UntypedWriter::on_publication_matched(dds_entity_t /*writer*/,
                                            const dds_publication_matched_status_t status,
                                            void* arg) noexcept {
   auto* matches = static_cast<MatchWatch*>(arg);
+  matches->current_readers.store(status.current_count);
   if (status.total_count_change == 0) return;  // a reader went away
   matches->new_readers.fetch_add(status.total_count_change);
   if (matches->callback) matches->callback();

@@ -58,5 +58,26 @@ TEST_F(ReaderMatched, AMovedWriterKeepsCounting) {
   EXPECT_EQ(writer->take_new_readers(), 1u);
 }
 
+// has_matched_readers() follows Cyclone's current count, readers going away included: what the sim
+// bridge asks each cycle before reading the signals nobody may want (issue 16, point 4).
+TEST_F(ReaderMatched, HasMatchedReadersFollowsReadersComingAndGoing) {
+  auto topic = Topic<Counter>::create(participant(), "/hubrt_test/matched_now");
+  ASSERT_TRUE(topic) << topic.error().message;
+  auto writer = Writer<Counter>::create(participant(), *topic);
+  ASSERT_TRUE(writer) << writer.error().message;
+  EXPECT_FALSE(writer->has_matched_readers());
+  auto created = Reader<Counter>::create(participant(), *topic);
+  ASSERT_TRUE(created) << created.error().message;
+  std::optional<Reader<Counter>> reader(std::move(*created));
+  ASSERT_TRUE(writer->wait_for_readers(1, kDeliveryBound));
+  EXPECT_TRUE(writer->has_matched_readers());
+  reader.reset();
+  const auto deadline = std::chrono::steady_clock::now() + kDeliveryBound;
+  while (writer->has_matched_readers() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  EXPECT_FALSE(writer->has_matched_readers());
+  EXPECT_EQ(writer->matched_readers().value_or(1), 0u);
+}
+
 }  // namespace
 }  // namespace hubrt::dds::test

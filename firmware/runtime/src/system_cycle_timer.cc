@@ -1,6 +1,5 @@
 #include "hubrt/runtime/system_cycle_timer.h"
 
-#include <poll.h>
 #include <pthread.h>
 #include <unistd.h>
 
@@ -8,8 +7,10 @@
 #include <cerrno>
 #include <memory>
 #include <system_error>
+#include <utility>
 
 #include <fmt/format.h>
+#include <sys/epoll.h>
 #include <sys/eventfd.h>
 #include <sys/signalfd.h>
 #include <sys/timerfd.h>
@@ -19,6 +20,9 @@ namespace {
 
 // Marks a stop request in the event counter, distinct from ordinary wakes (which add 1).
 constexpr std::uint64_t kStopIncrement = std::uint64_t{1} << 40;
+
+// What each fd is registered as in the epoll set (epoll_event.data.u32).
+enum FdTag : std::uint32_t { kTimerTag = 0, kEventTag = 1, kSignalTag = 2 };
 
 Error system_error(const char* what) {
   return make_error(ErrorCode::kIo,
@@ -53,29 +57,34 @@ sigset_t stop_signals() noexcept {
 Expected<std::unique_ptr<SystemCycleTimer>> SystemCycleTimer::create() {
   const sigset_t signals = stop_signals();
   if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return system_error("pthread_sigmask");
-  const int signal_fd = signalfd(-1, &signals, SFD_CLOEXEC | SFD_NONBLOCK);
-  if (signal_fd < 0) return system_error("signalfd");
-  const int timer_fd = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
-  if (timer_fd < 0) {
-    ::close(signal_fd);
-    return system_error("timerfd_create");
+  // Owned by the timer as soon as it exists, so every early return below closes what was opened.
+  std::unique_ptr<SystemCycleTimer> timer(new SystemCycleTimer());
+  timer->signal_fd_ = signalfd(-1, &signals, SFD_CLOEXEC | SFD_NONBLOCK);
+  if (timer->signal_fd_ < 0) return system_error("signalfd");
+  timer->timer_fd_ = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+  if (timer->timer_fd_ < 0) return system_error("timerfd_create");
+  timer->event_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  if (timer->event_fd_ < 0) return system_error("eventfd");
+  // One epoll set registered once, instead of poll(2) handing the kernel the three fds (and
+  // hooking the thread onto their three wait queues and off again) at every wait.
+  timer->epoll_fd_ = epoll_create1(EPOLL_CLOEXEC);
+  if (timer->epoll_fd_ < 0) return system_error("epoll_create1");
+  for (const auto& [fd, tag] :
+       {std::pair{timer->timer_fd_, kTimerTag}, std::pair{timer->event_fd_, kEventTag},
+        std::pair{timer->signal_fd_, kSignalTag}}) {
+    epoll_event event{};
+    event.events = EPOLLIN;
+    event.data.u32 = tag;
+    if (epoll_ctl(timer->epoll_fd_, EPOLL_CTL_ADD, fd, &event) != 0) return system_error("epoll_ctl");
   }
-  const int event_fd = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
-  if (event_fd < 0) {
-    ::close(signal_fd);
-    ::close(timer_fd);
-    return system_error("eventfd");
-  }
-  return std::unique_ptr<SystemCycleTimer>(new SystemCycleTimer(timer_fd, event_fd, signal_fd));
+  return timer;
 }
-
-SystemCycleTimer::SystemCycleTimer(int timer_fd, int event_fd, int signal_fd) noexcept
-    : timer_fd_(timer_fd), event_fd_(event_fd), signal_fd_(signal_fd) {}
 
 SystemCycleTimer::~SystemCycleTimer() {
   close_fd(timer_fd_);
   close_fd(event_fd_);
   close_fd(signal_fd_);
+  close_fd(epoll_fd_);
 }
 
 void SystemCycleTimer::wake() const noexcept {
@@ -93,6 +102,10 @@ Expected<TimerEvents> SystemCycleTimer::wait_until(Time deadline) {
   if (!is_armed_ || deadline != armed_) {
     // One-shot at an absolute time (TFD_TIMER_ABSTIME): a deadline already past fires at once
     // (timerfd_create(2)); an all-zero it_value would disarm instead, hence at least 1 ns.
+    // Arming also clears an expiration not read (Linux fs/timerfd.c, timerfd_setup() zeroes the
+    // tick count): the timerfd is readable again only once this deadline has come, so a
+    // readable timerfd is all the wait needs to know and it is never read — one system call per
+    // cycle less than reading the expiration count.
     itimerspec spec{};
     spec.it_value = to_timespec(deadline.time_since_epoch());
     if (spec.it_value.tv_sec == 0 && spec.it_value.tv_nsec == 0) spec.it_value.tv_nsec = 1;
@@ -101,14 +114,25 @@ Expected<TimerEvents> SystemCycleTimer::wait_until(Time deadline) {
     armed_ = deadline;
     is_armed_ = true;
   }
-  std::array<pollfd, 3> fds{{{timer_fd_, POLLIN, 0}, {event_fd_, POLLIN, 0}, {signal_fd_, POLLIN, 0}}};
+  std::array<epoll_event, 3> ready{};
+  int count = 0;
   for (;;) {
-    const int ready = ::poll(fds.data(), fds.size(), -1);
-    if (ready >= 0) break;
-    if (errno != EINTR) return system_error("poll");
+    count = epoll_wait(epoll_fd_, ready.data(), static_cast<int>(ready.size()), -1);
+    if (count >= 0) break;
+    if (errno != EINTR) return system_error("epoll_wait");
+  }
+  bool timer_ready = false;
+  bool event_ready = false;
+  bool signal_ready = false;
+  for (int i = 0; i < count; ++i) {
+    if ((ready[static_cast<std::size_t>(i)].events & EPOLLIN) == 0) continue;
+    const std::uint32_t tag = ready[static_cast<std::size_t>(i)].data.u32;
+    timer_ready |= tag == kTimerTag;
+    event_ready |= tag == kEventTag;
+    signal_ready |= tag == kSignalTag;
   }
   TimerEvents events;
-  if ((fds[2].revents & POLLIN) != 0) {
+  if (signal_ready) {
     signalfd_siginfo info{};
     if (::read(signal_fd_, &info, sizeof info) == sizeof info) {
       // A stop signal ends the run: the other fds are left unread, as nothing reads them after.
@@ -116,20 +140,18 @@ Expected<TimerEvents> SystemCycleTimer::wait_until(Time deadline) {
       return events;
     }
   }
-  if ((fds[1].revents & POLLIN) != 0) {
-    std::uint64_t count = 0;
-    if (::read(event_fd_, &count, sizeof count) == sizeof count) {
-      events.stop_requested = count >= kStopIncrement;
-      events.woken = count % kStopIncrement != 0;
+  if (event_ready) {
+    std::uint64_t count_read = 0;
+    if (::read(event_fd_, &count_read, sizeof count_read) == sizeof count_read) {
+      events.stop_requested = count_read >= kStopIncrement;
+      events.woken = count_read % kStopIncrement != 0;
     }
   }
-  if ((fds[0].revents & POLLIN) != 0) {
-    std::uint64_t expirations = 0;
-    events.deadline_reached =
-        ::read(timer_fd_, &expirations, sizeof expirations) == sizeof expirations && expirations > 0;
+  if (timer_ready) {
+    events.deadline_reached = true;
     // A one-shot timer that fired stays disarmed: the next wait arms it again even for the
-    // same deadline.
-    if (events.deadline_reached) is_armed_ = false;
+    // same deadline, which also clears this expiration.
+    is_armed_ = false;
   }
   return events;
 }

@@ -23,21 +23,29 @@ namespace {
 // Initial-exec TLS and a lock-free atomic: counting never allocates, which matters inside malloc.
 thread_local std::uint64_t t_count = 0;
 std::atomic<std::uint64_t> g_count{0};
-std::atomic<const char*> g_thread_name{nullptr};
-std::atomic<std::uint64_t> g_named_count{0};
+// Names of the threads counted apart (null: free slot) and their counts; set once, before use.
+std::atomic<const char*> g_thread_names[hubrt::testing::kMaxNamedThreads] = {};
+std::atomic<std::uint64_t> g_named_counts[hubrt::testing::kMaxNamedThreads] = {};
+std::atomic<bool> g_any_named{false};
 
 // The calling thread's name, straight from the kernel (no allocation, no interceptor).
-bool current_thread_named(const char* name) noexcept {
-  char current[16] = {};
-  if (syscall(SYS_prctl, PR_GET_NAME, current, 0, 0, 0) != 0) return false;
-  return std::strncmp(current, name, sizeof current) == 0;
+bool current_thread_name(char (&out)[16]) noexcept {
+  return syscall(SYS_prctl, PR_GET_NAME, out, 0, 0, 0) == 0;
 }
 
 inline void note() noexcept {
   ++t_count;
   g_count.fetch_add(1, std::memory_order_relaxed);
-  const char* name = g_thread_name.load(std::memory_order_relaxed);
-  if (name != nullptr && current_thread_named(name)) g_named_count.fetch_add(1, std::memory_order_relaxed);
+  if (!g_any_named.load(std::memory_order_relaxed)) return;
+  char current[16] = {};
+  if (!current_thread_name(current)) return;
+  for (std::size_t i = 0; i < hubrt::testing::kMaxNamedThreads; ++i) {
+    const char* name = g_thread_names[i].load(std::memory_order_relaxed);
+    if (name != nullptr && std::strncmp(current, name, sizeof current) == 0) {
+      g_named_counts[i].fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+  }
 }
 }  // namespace
 
@@ -135,11 +143,21 @@ std::uint64_t thread_allocations() noexcept {
 std::uint64_t process_allocations() noexcept {
   return g_count.load(std::memory_order_relaxed);
 }
-void count_allocations_of_thread_named(const char* name) noexcept {
-  g_thread_name.store(name, std::memory_order_relaxed);
+void count_allocations_of_threads_named(std::initializer_list<const char*> names) noexcept {
+  std::size_t i = 0;
+  for (const char* name : names) {
+    if (i == kMaxNamedThreads) break;
+    g_thread_names[i++].store(name, std::memory_order_relaxed);
+  }
+  g_any_named.store(i > 0, std::memory_order_relaxed);
 }
-std::uint64_t named_thread_allocations() noexcept {
-  return g_named_count.load(std::memory_order_relaxed);
+std::uint64_t named_thread_allocations(const char* name) noexcept {
+  for (std::size_t i = 0; i < kMaxNamedThreads; ++i) {
+    const char* named = g_thread_names[i].load(std::memory_order_relaxed);
+    if (named != nullptr && std::strcmp(named, name) == 0)
+      return g_named_counts[i].load(std::memory_order_relaxed);
+  }
+  return 0;
 }
 
 }  // namespace hubrt::testing

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 
 namespace hubrt::testing {
 
@@ -16,12 +17,15 @@ namespace hubrt::testing {
 std::uint64_t thread_allocations() noexcept;
 // Allocations made so far by every thread of the process (DDS's own threads included).
 std::uint64_t process_allocations() noexcept;
-// From this call on, also counts the allocations of threads whose name (PR_SET_NAME, as
-// pthread_setname_np sets it) is `name` (at most 15 bytes; a string literal: kept, not copied),
-// e.g. Cyclone's timed-event thread "tev", to tell its periodic work from the rest of the process.
-void count_allocations_of_thread_named(const char* name) noexcept;
-// Allocations counted so far for the thread name given to count_allocations_of_thread_named.
-std::uint64_t named_thread_allocations() noexcept;
+// From this call on, also counts apart the allocations of threads whose name (PR_SET_NAME, as
+// pthread_setname_np sets it) is one of `names` (up to kMaxNamedThreads; at most 15 bytes each;
+// string literals: kept, not copied), e.g. Cyclone's timed-event thread "tev" and its discovery
+// delivery thread "dq.builtins", to tell their lease-driven work from the rest of the process.
+// Call once, before the threads counted allocate what is to be measured.
+inline constexpr std::size_t kMaxNamedThreads = 4;
+void count_allocations_of_threads_named(std::initializer_list<const char*> names) noexcept;
+// Allocations counted so far for threads named `name` (one given to the call above; 0 otherwise).
+std::uint64_t named_thread_allocations(const char* name) noexcept;
 // How this build counts: "sanitizer hooks" or "interposed malloc".
 const char* allocation_counting_method() noexcept;
 

@@ -1,12 +1,15 @@
 #include "hubrt/runtime/cycle_runner.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <thread>
@@ -190,6 +193,47 @@ TEST(SystemCycleTimer, APastDeadlineEndsTheWaitAtOnce) {
   events = (*timer)->wait_until(now - milliseconds(1));
   ASSERT_TRUE(events);
   EXPECT_TRUE(events->deadline_reached);
+}
+
+// Issue 16, point 4: a periodic cycle's wait costs no read(2). The timerfd's expiration is not
+// read (re-arming clears it), and the eventfd and signalfd are read only when they fired. Counted
+// by the kernel: syscr of /proc/thread-self/io is this thread's read-family system calls.
+std::uint64_t reads_by_this_thread() {
+  const int fd = ::open("/proc/thread-self/io", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  std::array<char, 512> text{};
+  const ssize_t n = ::read(fd, text.data(), text.size() - 1);  // one read per call: counted below
+  ::close(fd);
+  const char* syscr = n > 0 ? std::strstr(text.data(), "syscr: ") : nullptr;
+  return syscr == nullptr ? 0 : std::strtoull(syscr + 7, nullptr, 10);
+}
+
+TEST(SystemCycleTimer, AReachedDeadlineIsNotReadFromTheTimer) {
+  auto timer = SystemCycleTimer::create();
+  ASSERT_TRUE(timer) << timer.error().message;
+  ASSERT_NE(reads_by_this_thread(), 0u) << "no /proc/thread-self/io (CONFIG_TASK_IO_ACCOUNTING) here";
+  // What measuring itself costs (the read of the first call shows in the second).
+  const std::uint64_t calibration_before = reads_by_this_thread();
+  const std::uint64_t measuring = reads_by_this_thread() - calibration_before;
+  constexpr int kCycles = 100;
+  Time deadline = SystemClock().now().mono;
+  const std::uint64_t before = reads_by_this_thread();
+  for (int i = 0; i < kCycles; ++i) {
+    // Past deadlines, each a new one, as the runner's after an overrun: every wait ends at once.
+    deadline += std::chrono::microseconds(1);
+    auto events = (*timer)->wait_until(deadline);
+    ASSERT_TRUE(events) << events.error().message;
+    ASSERT_TRUE(events->deadline_reached);
+    ASSERT_FALSE(events->woken);
+  }
+  const std::uint64_t reads = reads_by_this_thread() - before - measuring;
+  EXPECT_EQ(reads, 0u) << "read(2) calls in " << kCycles << " cycles' waits (poll + timerfd read: one each)";
+  // A wake is still read (and reported) once.
+  (*timer)->wake();
+  auto events = (*timer)->wait_until(deadline + std::chrono::hours(1));
+  ASSERT_TRUE(events);
+  EXPECT_TRUE(events->woken);
+  EXPECT_FALSE(events->deadline_reached);
 }
 
 TEST(SystemCycleTimer, WakesAndStopRequestsEndAWaitForAFarDeadline) {

@@ -186,9 +186,16 @@ void SimBridgeStage::write_signals(const Instant& now) noexcept {
 
 void SimBridgeStage::after_nodes(const Instant& now, bool publish_all, bool /*took_effect*/) noexcept {
   if (!publish_all) return;
+  // Nobody listening (a hub under test or in the bench without the station model): the signals are
+  // not even read. Reading them is a level read per signal, each advancing every simulator of the
+  // fake GPIO to the clock's now, which was most of what a simulated hub's cycle cost beyond its
+  // own node (perf, issue 16). A reader that matches is counted by take_new_readers(), so the next
+  // periodic cycle reads and writes at once, as before.
+  const bool new_reader = dds_.signals_writer.take_new_readers() > 0;
+  if (!new_reader && !dds_.signals_writer.has_matched_readers()) return;
   const bool changed = read_signals(now);
   const bool due = !last_written_ || now.mono - *last_written_ >= kSimSignalsKeepAlive;
-  if (changed || due || dds_.signals_writer.take_new_readers() > 0) write_signals(now);
+  if (changed || due || new_reader) write_signals(now);
 }
 
 void SimBridgeStage::after_safe_state(const Instant& now) noexcept {

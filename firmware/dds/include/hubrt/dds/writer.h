@@ -69,6 +69,11 @@ class UntypedWriter {
   // Allocation-free, lock-free: for the cycle.
   std::uint64_t take_new_readers() noexcept { return matches_->new_readers.exchange(0); }
 
+  // Whether a reader is matched now, as the publication-matched listener last heard it (Cyclone
+  // calls it on every match and unmatch with the current count). Allocation-free, lock-free: for
+  // the cycle, to skip building a sample nobody would receive.
+  [[nodiscard]] bool has_matched_readers() const noexcept { return matches_->current_readers.load() > 0; }
+
   // Waits until at least `count` readers are matched, polling with a deadline; for tests and
   // tools, not for the cycle. Errors: kTimeout naming the topic and how many matched.
   Expected<void> wait_for_readers(std::uint32_t count, Duration timeout) const;
@@ -91,6 +96,7 @@ class UntypedWriter {
   // writer moves (Cyclone keeps a pointer to it until the writer is deleted).
   struct MatchWatch {
     std::atomic<std::uint64_t> new_readers{0};
+    std::atomic<std::uint32_t> current_readers{0};
     ReaderMatchedCallback callback;
   };
 
@@ -128,6 +134,7 @@ class Writer {
   Status write(const T& sample) noexcept { return writer_.write(&sample); }
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept { return writer_.matched_readers(); }
   std::uint64_t take_new_readers() noexcept { return writer_.take_new_readers(); }
+  [[nodiscard]] bool has_matched_readers() const noexcept { return writer_.has_matched_readers(); }
   Expected<void> wait_for_readers(std::uint32_t count, Duration timeout) const {
     return writer_.wait_for_readers(count, timeout);
   }

@@ -1,6 +1,7 @@
 // The real-time CycleTimer: a timerfd armed at an absolute CLOCK_MONOTONIC deadline (so lateness
 // never shifts later deadlines), an eventfd for wakes and stop requests, and a signalfd for the
-// stop signals (stop_signals()), all waited on with one poll(2).
+// stop signals (stop_signals()), all waited on with one epoll set. A periodic cycle costs two
+// system calls: arming the timerfd and epoll_wait (the timerfd is never read: arming clears it).
 #pragma once
 
 #include <csignal>
@@ -36,12 +37,13 @@ class SystemCycleTimer final : public CycleTimer {
   void request_stop() const noexcept override;
 
  private:
-  SystemCycleTimer(int timer_fd, int event_fd, int signal_fd) noexcept;
+  SystemCycleTimer() noexcept = default;
 
   int timer_fd_ = -1;
   int event_fd_ = -1;
   int signal_fd_ = -1;
-  Time armed_{};  // the deadline the timerfd is armed at (re-armed only when it changes)
+  int epoll_fd_ = -1;  // timer_fd_, event_fd_ and signal_fd_, registered once
+  Time armed_{};       // the deadline the timerfd is armed at (re-armed only when it changes)
   bool is_armed_ = false;
 };
 

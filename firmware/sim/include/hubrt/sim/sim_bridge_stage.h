@@ -33,8 +33,10 @@ inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
 // The signals are published after a periodic cycle when one changed, when a new reader matched,
 // and otherwise at least this often (the station model takes a hub silent for a second as gone:
-// station_bridge.h, kSilentAfter). Unchanged signals are not written every cycle: at 1 kHz that
-// was a second DDS write per cycle beside the State.
+// station_bridge.h, kSilentAfter) — but only while a reader is matched: with nobody listening they
+// are not even read, and a reader that matches gets them at the next periodic cycle. Unchanged
+// signals are not written every cycle: at 1 kHz that was a second DDS write per cycle beside the
+// State.
 inline constexpr Duration kSimSignalsKeepAlive = std::chrono::milliseconds(100);
 
 class SimBridgeStage final : public runtime::CycleStage {
