@@ -113,7 +113,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
 
   // While the twin check's window runs (it counts from TwinWatch::start): what needs no verdict —
   // no device, no State writer (a running twin would see one as a twin of its own), nothing
-  // published. The hub object, the readers of other hubs' States, the /diagnostics endpoint.
+  // published. The hub object, the readers of other hubs' States, the /diagnostics endpoint and
+  // the sim bridge's entities.
   runtime::HubOptions options;
   options.type = out->config.type;
   options.name = out->config.name;
@@ -126,6 +127,12 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     auto endpoint = DiagnosticsStage::open_endpoint(*out->participant);
     if (!endpoint) return std::move(endpoint).error();
     diagnostics_endpoint.emplace(std::move(*endpoint));
+  }
+  std::unique_ptr<Simulation::PreparedBridge> prepared_bridge;
+  if (request.backend == BackendKind::kFake) {
+    auto prepared = request.simulation->prepare_bridge(*out->participant, out->config.name);
+    if (!prepared) return std::move(prepared).error();
+    prepared_bridge = std::move(*prepared);
   }
 
   // Before the backend: a twin refused here has opened no device and touched no output.
@@ -170,10 +177,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->hub->add_stage(std::move(twins));
   }
   if (out->simulated) {
-    auto bridge =
-        request.simulation->bridge(*out->participant, out->config.name, out->board, *out->simulated, log);
-    if (!bridge) return std::move(bridge).error();
-    out->hub->add_stage(std::move(*bridge));
+    out->hub->add_stage(
+        request.simulation->bridge(std::move(prepared_bridge), out->board, *out->simulated, log));
   }
   return out;
 }
