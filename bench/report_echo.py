@@ -52,6 +52,21 @@ def spread(r, key):
     return f" ({low:.2f}-{high:.2f})"
 
 
+def heartbeat_lines(echo):
+    """The hub's round trips that found it publishing its heartbeat (another State arrived first)."""
+    parts = []
+    for key, name in ECHO_REGIMES:
+        r = echo[key]
+        if "hub_with_heartbeat_between" not in r:
+            return []
+        clean = r["hub_without_heartbeat_ms"]
+        parts.append(f"{name}: {r['hub_with_heartbeat_between']} of {r['hub_ms']['n']}, the others p50 "
+                     f"{ms(clean['p50'])}, p99 {ms(clean['p99'])} (all: p99 {ms(r['hub_ms']['p99'])})")
+    return ["", "Hub round trips during which its heartbeat went out first (another State arrived before the echo: "
+            "the command came while the cycle thread was publishing the periodic State, and waited for it): "
+            + "; ".join(parts) + "."]
+
+
 def echo_section(report, echo, ros1=None):
     if echo is None or "sparse" not in echo:
         for _, name in ECHO_REGIMES:
@@ -104,6 +119,7 @@ def echo_section(report, echo, ros1=None):
                    "arrives behind. On a shared, loaded machine the p99 of both sides is set by scheduling delays "
                    "of milliseconds, so it moves from run to run by more than the aim's 10 %.",
                    alternative=f"raw pong p50 {ms(raw['p50'])}, p99 {ms(raw['p99'])}; {alternative}")
+    lines += heartbeat_lines(echo)
     lines += [
         "",
         f"Lost (no echo within 1 s): raw {echo['raw_lost']}, hub {echo['hub_lost']}. Best known alternative: "

@@ -54,15 +54,25 @@ struct Side {
   std::size_t sent = 0;  // commands sent, for the alternating action
   std::vector<double> back_to_back_ms;
   std::vector<double> sparse_ms;
+  // Recorded round trips during which another State (the hub's heartbeat) arrived first, and the
+  // recorded ones without: the tail's share that is the hub's periodic cycle.
+  std::size_t with_heartbeat = 0;
+  std::vector<double> without_heartbeat_ms;
   std::size_t lost = 0;
 
   // One round trip; recorded into `into` unless null.
   void round_trip_into(std::vector<double>* into) {
-    const double rtt = round_trip(*peer, sent++ % 2 == 0 ? "monitor" : "reset");
+    bool heartbeat = false;
+    const double rtt = round_trip(*peer, sent++ % 2 == 0 ? "monitor" : "reset", &heartbeat);
     if (rtt < 0) {
       ++lost;
     } else if (into != nullptr) {
       into->push_back(rtt * 1e3);
+      if (heartbeat) {
+        ++with_heartbeat;
+      } else {
+        without_heartbeat_ms.push_back(rtt * 1e3);
+      }
     }
   }
 };
@@ -131,6 +141,15 @@ struct Regime {
   std::vector<double> ratio_p50;  // one per round
   std::vector<double> ratio_p99;
   nlohmann::ordered_json rounds = nlohmann::ordered_json::array();
+  std::size_t hub_with_heartbeat = 0;
+  std::vector<double> hub_without_heartbeat_ms;
+
+  // The hub's round trips that found it publishing a heartbeat (another State came first).
+  void add_heartbeats(const Side& hub) {
+    hub_with_heartbeat += hub.with_heartbeat;
+    hub_without_heartbeat_ms.insert(hub_without_heartbeat_ms.end(), hub.without_heartbeat_ms.begin(),
+                                    hub.without_heartbeat_ms.end());
+  }
 
   // Adds one round's samples of both sides.
   void add_round(const std::vector<double>& raw, const std::vector<double>& hub) {
@@ -169,6 +188,8 @@ struct Regime {
     j["pooled_ratio_p50"] = raw_s.p50 > 0 ? hub_s.p50 / raw_s.p50 : 0.0;
     j["pooled_ratio_p99"] = raw_s.p99 > 0 ? hub_s.p99 / raw_s.p99 : 0.0;
     j["rounds"] = rounds;
+    j["hub_with_heartbeat_between"] = hub_with_heartbeat;
+    j["hub_without_heartbeat_ms"] = summary_json(hub_without_heartbeat_ms);
     progress(fmt::format(
         "  pooled: raw p50 {:.3f} ms p99 {:.3f} ms; hub p50 {:.3f} ms p99 {:.3f} ms; median of {} rounds' "
         "ratios: p50 {:.2f}x ({:.2f}-{:.2f}), p99 {:.2f}x ({:.2f}-{:.2f})",
@@ -235,6 +256,7 @@ int run(const Options& o) {
     Side hub_side(&*hub_peer);
     run_back_to_back(raw, hub_side, std::max<std::size_t>(o.back_to_back / rounds, 1), burst, refill_s);
     back_to_back_regime.add_round(raw.back_to_back_ms, hub_side.back_to_back_ms);
+    back_to_back_regime.add_heartbeats(hub_side);
     raw_lost += raw.lost;
     hub_lost += hub_side.lost;
   }
@@ -246,6 +268,7 @@ int run(const Options& o) {
     Side hub_side(&*hub_peer);
     run_sparse(raw, hub_side, std::max<std::size_t>(o.sparse / rounds, 1), static_cast<unsigned>(16 + r));
     sparse_regime.add_round(raw.sparse_ms, hub_side.sparse_ms);
+    sparse_regime.add_heartbeats(hub_side);
     raw_lost += raw.lost;
     hub_lost += hub_side.lost;
   }
