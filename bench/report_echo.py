@@ -34,7 +34,7 @@ def rounds_text(echo):
         return "The ratios are those of the pooled percentiles."
     pin = echo.get("pinning", {})
     pinned = (f"both answering processes pinned to CPU {pin['peers_cpu']} (every thread: raw {pin['raw_threads']}, "
-              f"hub {pin['hub_threads']}), the planner to CPUs {pin['planner_cpus']}"
+              f"hub {pin['hub_threads']}), the planner to CPU(s) {pin['planner_cpus']}"
               if pin.get("peers_cpu") is not None else "no CPU pinning")
     return (f"Each regime is measured in {rounds} rounds, each round both sides interleaved (so a load that drifts "
             "during the run hits both alike); a ratio is the median of the rounds' ratios, with their spread (lowest "
@@ -45,11 +45,12 @@ def ratio_label(r):
     return ", median of rounds" if "rounds" in r else ""
 
 
-def spread(r, key):
+def spread(r, key, prefix=None):
+    """The lowest and highest round's ratio: " (a-b)", or prefix + "a-b"."""
     if key not in r:
         return ""
     low, high = r[key]
-    return f" ({low:.2f}-{high:.2f})"
+    return f" ({low:.2f}-{high:.2f})" if prefix is None else f"{prefix}{low:.2f}-{high:.2f}"
 
 
 def heartbeat_lines(echo):
@@ -106,8 +107,8 @@ def echo_section(report, echo, ros1=None):
         ]
         ok = r["ratio_p50"] <= ECHO_AIM_RATIO and r["ratio_p99"] <= ECHO_AIM_RATIO
         report.aim(f"command -> echo, {name}: p50 and p99 <= {ECHO_AIM_RATIO:.1f} x raw Cyclone pong",
-                   f"hub p50 {ms(hub['p50'])} ({r['ratio_p50']:.2f}x{spread(r, 'ratio_p50_spread')}), p99 "
-                   f"{ms(hub['p99'])} ({r['ratio_p99']:.2f}x{spread(r, 'ratio_p99_spread')})",
+                   f"hub p50 {ms(hub['p50'])} ({r['ratio_p50']:.2f}x{spread(r, 'ratio_p50_spread', ', rounds ')}), p99 "
+                   f"{ms(hub['p99'])} ({r['ratio_p99']:.2f}x{spread(r, 'ratio_p99_spread', ', rounds ')})",
                    ok,
                    f"{name}: hub p50 {ms(hub['p50'])} against raw {ms(raw['p50'])} ({r['ratio_p50']:.2f}x), p99 "
                    f"{ms(hub['p99'])} against {ms(raw['p99'])} ({r['ratio_p99']:.2f}x). Both pay the same transport "

@@ -236,7 +236,7 @@ int run(const Options& o) {
     const cpu_set_t peers = cpu_set_of(cpus - 1, cpus - 1);
     const cpu_set_t planner = cpu_set_of(0, cpus - 2);
     pinning["peers_cpu"] = cpus - 1;
-    pinning["planner_cpus"] = fmt::format("0-{}", cpus - 2);
+    pinning["planner_cpus"] = cpus == 2 ? std::string("0") : fmt::format("0-{}", cpus - 2);
     pinning["raw_threads"] = pin_process(pong->pid(), peers);
     pinning["hub_threads"] = pin_process(hub->pid(), peers);
     pinning["planner_threads"] = pin_process(getpid(), planner);
