@@ -102,8 +102,8 @@ class NodeBase {
   // loop cannot make the hub publish more than a command flood could).
   virtual Status publish_if_due(const Instant& now, bool took_effect) noexcept = 0;
   // A command may be waiting for this node (CommandSource::may_have_command): a command step
-  // steps it before the nodes without one.
-  [[nodiscard]] virtual bool may_have_command() const noexcept = 0;
+  // steps it before the nodes without one. True when the node cannot tell.
+  [[nodiscard]] virtual bool may_have_command() const noexcept { return true; }
   // The hub is stopping: drives the outputs safe; the node's lifecycle goes to safe.
   virtual void enter_safe_state() noexcept = 0;
   [[nodiscard]] virtual Health health() const noexcept = 0;
