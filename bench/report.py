@@ -260,8 +260,9 @@ def startup_section(report, startup):
         "at the same rate is spawned, and the time to the first State arriving is taken. Both include process "
         "start, Cyclone start-up and discovery in both directions; the hub also loads and checks its board and "
         "hub files, watches discovery for a twin until it has settled (no participant newly discovered for 15 ms; "
-        "the whole `--twin-check-ms`, 300 ms, only while a hub of an older hubrt is on the domain) and builds "
-        "its nodes. "
+        "the whole `--twin-check-ms`, 300 ms, only while a hub of an older hubrt is on the domain; its /diagnostics "
+        "writer, the sim bridge's endpoints and its hub object are made inside that window) and builds its nodes, "
+        "whose State writers may only be made after the verdict. "
         "States written before discovery completes reach nobody (volatile durability): the raw writer's first "
         "State received is the first one written after it, so at the shipped 10 Hz its figure rounds up to a "
         "100 ms period; the hub publishes its State at once when a new reader matches, so its figure is when it "
@@ -299,8 +300,14 @@ def startup_section(report, startup):
                    ("The raw writer does not publish when a reader matches, so at 10 Hz its first State received "
                     "waits for the next period; the hub's does not." if rate < 100 else
                     "At this rate both are reachable as soon as discovery completes: the difference is hubd's own "
-                    "start-up (more shared libraries to load and relocate, the files, the twin check's settling, "
-                    "the nodes and their DDS entities)."))
+                    "start-up. Most of it is the twin check, which is safety (README, \"One hub name, one hub\"): "
+                    "it ends 15 ms after the last participant answered hubd's SPDP (the waiting subscriber answers "
+                    "within a loopback round trip), and a hub with the same name that answers within that time must "
+                    "be refused before any device is opened or any State written; the DDS entities that need no "
+                    "verdict are made while it waits. The rest: process start (hubd loads and relocates more "
+                    "shared libraries than the raw program), reading the two YAML files, and the nodes with their "
+                    "command reader and State writer after the verdict (hubrt's pooled writer probes the topic's "
+                    "sertype with a reader and writer of its own, firmware/dds/src/sertype_probe.cc)."))
 
 
 def picture(results, path):

@@ -12,15 +12,27 @@
 // raw take turns command by command (sparse) or burst by burst (back to back), in an order that
 // alternates, so machine noise hits both alike.
 //
+// Robust comparison (the figures are tens of microseconds on a shared machine): the run is cut
+// into rounds, each measuring both sides interleaved command by command or burst by burst, so a
+// drifting load hits both alike; each round gives its own hub / raw ratios, and the result is the
+// median of the rounds' ratios with their spread (the pooled percentiles are kept too). Both
+// answering processes are pinned to the same CPU (every thread), the planner to the others, so
+// neither side gets a core the other does not.
+//
 // Back to back within the hub's budget of immediate States (runtime/immediate_state_budget.h, a
 // token bucket of kDefaultImmediateStateBurst refilled one per immediate_state_interval_ms): a
 // planner answering every echo at once without a pause is a flood by the wire contract and gets
 // its States at the refill rate. So the back-to-back regime sends bursts of `burst` commands, each
 // right after the echo of the one before, and pauses for the bucket to refill; the first command
 // of a burst comes after a pause (that is the sparse regime's case) and is not recorded.
+#include <sched.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <random>
+#include <string>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -42,18 +54,47 @@ struct Side {
   std::size_t sent = 0;  // commands sent, for the alternating action
   std::vector<double> back_to_back_ms;
   std::vector<double> sparse_ms;
+  // Recorded round trips during which another State (the hub's heartbeat) arrived first, and the
+  // recorded ones without: the tail's share that is the hub's periodic cycle.
+  std::size_t with_heartbeat = 0;
+  std::vector<double> without_heartbeat_ms;
   std::size_t lost = 0;
 
   // One round trip; recorded into `into` unless null.
   void round_trip_into(std::vector<double>* into) {
-    const double rtt = round_trip(*peer, sent++ % 2 == 0 ? "monitor" : "reset");
+    bool heartbeat = false;
+    const double rtt = round_trip(*peer, sent++ % 2 == 0 ? "monitor" : "reset", &heartbeat);
     if (rtt < 0) {
       ++lost;
     } else if (into != nullptr) {
       into->push_back(rtt * 1e3);
+      if (heartbeat) {
+        ++with_heartbeat;
+      } else {
+        without_heartbeat_ms.push_back(rtt * 1e3);
+      }
     }
   }
 };
+
+// Pins every thread of process `pid` to the CPUs in `cpus` (threads started later inherit it from
+// the thread that starts them). Returns the number of threads pinned, 0 when none could be.
+std::size_t pin_process(pid_t pid, const cpu_set_t& cpus) {
+  std::size_t pinned = 0;
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator(fmt::format("/proc/{}/task", pid), ec)) {
+    const pid_t tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
+    if (sched_setaffinity(tid, sizeof cpus, &cpus) == 0) ++pinned;
+  }
+  return pinned;
+}
+
+cpu_set_t cpu_set_of(int first, int last) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (int cpu = first; cpu <= last; ++cpu) CPU_SET(cpu, &set);
+  return set;
+}
 
 void pause_s(double seconds) {
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
@@ -74,9 +115,9 @@ void run_back_to_back(Side& raw, Side& hub, std::size_t samples, std::size_t bur
 }
 
 // `commands` round trips per side, each after a gap drawn uniformly from 20-120 ms (seeded: every
-// run draws the same gaps).
-void run_sparse(Side& raw, Side& hub, std::size_t commands) {
-  std::mt19937 random(16);
+// run draws the same gaps for the same round).
+void run_sparse(Side& raw, Side& hub, std::size_t commands, unsigned seed) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> gap_s(0.020, 0.120);
   for (std::size_t i = 0; i < commands; ++i) {
     Side* order[2] = {&raw, &hub};
@@ -86,25 +127,87 @@ void run_sparse(Side& raw, Side& hub, std::size_t commands) {
   }
 }
 
-nlohmann::ordered_json regime_json(const std::vector<double>& raw_ms, const std::vector<double>& hub_ms) {
-  const auto raw_s = summary_of(raw_ms);
-  const auto hub_s = summary_of(hub_ms);
-  nlohmann::ordered_json j;
-  j["raw_ms"] = summary_json(raw_ms);
-  j["hub_ms"] = summary_json(hub_ms);
-  j["ratio_p50"] = raw_s.p50 > 0 ? hub_s.p50 / raw_s.p50 : 0.0;
-  j["ratio_p99"] = raw_s.p99 > 0 ? hub_s.p99 / raw_s.p99 : 0.0;
-  progress(fmt::format(
-      "  raw p50 {:.3f} ms p99 {:.3f} ms; hub p50 {:.3f} ms p99 {:.3f} ms: {:.2f}x / {:.2f}x", raw_s.p50,
-      raw_s.p99, hub_s.p50, hub_s.p99, j["ratio_p50"].get<double>(), j["ratio_p99"].get<double>()));
-  return j;
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
+
+// The samples of one regime: pooled, and per round.
+struct Regime {
+  std::vector<double> raw_ms;
+  std::vector<double> hub_ms;
+  std::vector<double> ratio_p50;  // one per round
+  std::vector<double> ratio_p99;
+  nlohmann::ordered_json rounds = nlohmann::ordered_json::array();
+  std::size_t hub_with_heartbeat = 0;
+  std::vector<double> hub_without_heartbeat_ms;
+
+  // The hub's round trips that found it publishing a heartbeat (another State came first).
+  void add_heartbeats(const Side& hub) {
+    hub_with_heartbeat += hub.with_heartbeat;
+    hub_without_heartbeat_ms.insert(hub_without_heartbeat_ms.end(), hub.without_heartbeat_ms.begin(),
+                                    hub.without_heartbeat_ms.end());
+  }
+
+  // Adds one round's samples of both sides.
+  void add_round(const std::vector<double>& raw, const std::vector<double>& hub) {
+    const auto r = summary_of(raw);
+    const auto h = summary_of(hub);
+    const double p50 = r.p50 > 0 ? h.p50 / r.p50 : 0.0;
+    const double p99 = r.p99 > 0 ? h.p99 / r.p99 : 0.0;
+    ratio_p50.push_back(p50);
+    ratio_p99.push_back(p99);
+    rounds.push_back({{"n", std::min(raw.size(), hub.size())},
+                      {"raw_p50", r.p50},
+                      {"raw_p99", r.p99},
+                      {"hub_p50", h.p50},
+                      {"hub_p99", h.p99},
+                      {"ratio_p50", p50},
+                      {"ratio_p99", p99}});
+    raw_ms.insert(raw_ms.end(), raw.begin(), raw.end());
+    hub_ms.insert(hub_ms.end(), hub.begin(), hub.end());
+  }
+
+  // The aims are judged on ratio_p50 / ratio_p99: the median of the rounds' ratios (each round
+  // measured both sides under the same load); pooled_ratio_* are the ratios of the pooled
+  // percentiles, for comparison with earlier runs.
+  nlohmann::ordered_json json() const {
+    const auto raw_s = summary_of(raw_ms);
+    const auto hub_s = summary_of(hub_ms);
+    nlohmann::ordered_json j;
+    j["raw_ms"] = summary_json(raw_ms);
+    j["hub_ms"] = summary_json(hub_ms);
+    j["ratio_p50"] = median_of(ratio_p50);
+    j["ratio_p99"] = median_of(ratio_p99);
+    j["ratio_p50_spread"] = {*std::min_element(ratio_p50.begin(), ratio_p50.end()),
+                             *std::max_element(ratio_p50.begin(), ratio_p50.end())};
+    j["ratio_p99_spread"] = {*std::min_element(ratio_p99.begin(), ratio_p99.end()),
+                             *std::max_element(ratio_p99.begin(), ratio_p99.end())};
+    j["pooled_ratio_p50"] = raw_s.p50 > 0 ? hub_s.p50 / raw_s.p50 : 0.0;
+    j["pooled_ratio_p99"] = raw_s.p99 > 0 ? hub_s.p99 / raw_s.p99 : 0.0;
+    j["rounds"] = rounds;
+    j["hub_with_heartbeat_between"] = hub_with_heartbeat;
+    j["hub_without_heartbeat_ms"] = summary_json(hub_without_heartbeat_ms);
+    progress(fmt::format(
+        "  pooled: raw p50 {:.3f} ms p99 {:.3f} ms; hub p50 {:.3f} ms p99 {:.3f} ms; median of {} rounds' "
+        "ratios: p50 {:.2f}x ({:.2f}-{:.2f}), p99 {:.2f}x ({:.2f}-{:.2f})",
+        raw_s.p50, raw_s.p99, hub_s.p50, hub_s.p99, ratio_p50.size(), j["ratio_p50"].get<double>(),
+        j["ratio_p50_spread"][0].get<double>(), j["ratio_p50_spread"][1].get<double>(),
+        j["ratio_p99"].get<double>(), j["ratio_p99_spread"][0].get<double>(),
+        j["ratio_p99_spread"][1].get<double>()));
+    return j;
+  }
+};
 
 struct Options {
   std::string out = "echo.json";
-  std::size_t back_to_back = 1500;
+  std::size_t back_to_back = 3000;
   std::size_t sparse = 600;
+  std::size_t rounds = 6;
   double hub_rate = 100;
+  bool pin = true;
 };
 
 int run(const Options& o) {
@@ -124,17 +227,52 @@ int run(const Options& o) {
   const std::size_t burst = runtime::kDefaultImmediateStateBurst;
   // The bucket refills `burst` tokens in burst x interval; 2 ms more for the hub's wake-up.
   const double refill_s = to_seconds(burst * runtime::kDefaultImmediateStateInterval) + 0.002;
+  std::size_t raw_lost = 0;
+  std::size_t hub_lost = 0;
+  // The same CPU for both answering processes, every thread of each; the planner on the others.
+  nlohmann::ordered_json pinning;
+  const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+  if (o.pin && cpus >= 2) {
+    const cpu_set_t peers = cpu_set_of(cpus - 1, cpus - 1);
+    const cpu_set_t planner = cpu_set_of(0, cpus - 2);
+    pinning["peers_cpu"] = cpus - 1;
+    pinning["planner_cpus"] = cpus == 2 ? std::string("0") : fmt::format("0-{}", cpus - 2);
+    pinning["raw_threads"] = pin_process(pong->pid(), peers);
+    pinning["hub_threads"] = pin_process(hub->pid(), peers);
+    pinning["planner_threads"] = pin_process(getpid(), planner);
+  } else {
+    pinning["peers_cpu"] = nullptr;
+  }
   run_block(*raw_peer, 50, false, refill_s);  // warm-up: discovery settles, caches fill
   run_block(*hub_peer, 50, false, refill_s);
-  Side raw(&*raw_peer);
-  Side hub_side(&*hub_peer);
-  progress(fmt::format("echo latency, back to back: {} round trips per side in bursts of {} (hub at {} Hz)",
-                       o.back_to_back, burst, o.hub_rate));
-  run_back_to_back(raw, hub_side, o.back_to_back, burst, refill_s);
-  const auto back_to_back = regime_json(raw.back_to_back_ms, hub_side.back_to_back_ms);
-  progress(fmt::format("echo latency, sparse: {} commands per side, 20-120 ms apart", o.sparse));
-  run_sparse(raw, hub_side, o.sparse);
-  const auto sparse = regime_json(raw.sparse_ms, hub_side.sparse_ms);
+  const std::size_t rounds = std::max<std::size_t>(o.rounds, 1);
+  Regime back_to_back_regime;
+  Regime sparse_regime;
+  progress(fmt::format(
+      "echo latency, back to back: {} round trips per side in bursts of {} (hub at {} Hz), {} rounds",
+      o.back_to_back, burst, o.hub_rate, rounds));
+  for (std::size_t r = 0; r < rounds; ++r) {
+    Side raw(&*raw_peer);
+    Side hub_side(&*hub_peer);
+    run_back_to_back(raw, hub_side, std::max<std::size_t>(o.back_to_back / rounds, 1), burst, refill_s);
+    back_to_back_regime.add_round(raw.back_to_back_ms, hub_side.back_to_back_ms);
+    back_to_back_regime.add_heartbeats(hub_side);
+    raw_lost += raw.lost;
+    hub_lost += hub_side.lost;
+  }
+  const auto back_to_back = back_to_back_regime.json();
+  progress(fmt::format("echo latency, sparse: {} commands per side, 20-120 ms apart, {} rounds", o.sparse,
+                       rounds));
+  for (std::size_t r = 0; r < rounds; ++r) {
+    Side raw(&*raw_peer);
+    Side hub_side(&*hub_peer);
+    run_sparse(raw, hub_side, std::max<std::size_t>(o.sparse / rounds, 1), static_cast<unsigned>(16 + r));
+    sparse_regime.add_round(raw.sparse_ms, hub_side.sparse_ms);
+    sparse_regime.add_heartbeats(hub_side);
+    raw_lost += raw.lost;
+    hub_lost += hub_side.lost;
+  }
+  const auto sparse = sparse_regime.json();
   dds_delete(*participant);
   stop(*hub);
   stop(*pong);
@@ -145,8 +283,10 @@ int run(const Options& o) {
   result["hub_rate_hz"] = o.hub_rate;
   result["burst"] = burst;
   result["refill_ms"] = refill_s * 1e3;
-  result["raw_lost"] = raw.lost;
-  result["hub_lost"] = hub_side.lost;
+  result["rounds"] = rounds;
+  result["pinning"] = pinning;
+  result["raw_lost"] = raw_lost;
+  result["hub_lost"] = hub_lost;
   result["back_to_back"] = back_to_back;
   result["sparse"] = sparse;
   if (auto ok = write_json(o.out, result); !ok) return fmt::print(stderr, "{}\n", ok.error().message), 1;
@@ -163,6 +303,11 @@ int main(int argc, char** argv) {
   app.add_option("--back-to-back", o.back_to_back, "Recorded back-to-back round trips per side");
   app.add_option("--sparse", o.sparse, "Commands per side 20-120 ms apart");
   app.add_option("--hub-rate", o.hub_rate, "The hub's cycle rate in Hz");
+  app.add_option("--rounds", o.rounds,
+                 "Rounds per regime, each measuring both sides interleaved; ratios are the median of the "
+                 "rounds'");
+  app.add_flag("--pin,!--no-pin", o.pin,
+               "Pin both answering processes to the last CPU and the planner to the others (default on)");
   CLI11_PARSE(app, argc, argv);
   return hubrt::bench::run(o);
 }

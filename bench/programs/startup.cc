@@ -165,6 +165,11 @@ int main(int argc, char** argv) {
       "--hubd-arg", hubd_args,
       "One more argument for hubd (repeatable), e.g. --hubd-arg=--twin-check-ms=0 to see the start-up "
       "without the twin check's discovery window");
+  std::string hubd;
+  app.add_option("--hubd", hubd,
+                 "The hubd program to start (default: this build's), e.g. another build's to compare")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
+  if (!hubd.empty()) hubrt::bench::use_hubd(hubd);
   return hubrt::bench::run(out, runs, rates, hubd_args);
 }

@@ -18,8 +18,18 @@ Expected<test_support::TestDomain> join_private_domain() {
   return domain;
 }
 
+namespace {
+std::string& hubd_override() {
+  static std::string path;
+  return path;
+}
+}  // namespace
+
 std::string hubd_path() {
-  return HUBRT_HUBD_PATH;
+  return hubd_override().empty() ? std::string(HUBRT_HUBD_PATH) : hubd_override();
+}
+void use_hubd(std::string path) {
+  hubd_override() = std::move(path);
 }
 std::string hubctl_path() {
   return HUBRT_HUBCTL_PATH;

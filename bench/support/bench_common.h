@@ -36,6 +36,8 @@ Expected<test_support::ChildProcess> start_raw_peer(const std::vector<std::strin
 void stop(test_support::ChildProcess& child);
 
 std::string hubd_path();
+// Makes start_hubd() run `path` instead of this build's hubd (e.g. another build, to compare).
+void use_hubd(std::string path);
 std::string hubctl_path();
 std::string source_dir();
 

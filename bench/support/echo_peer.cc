@@ -27,7 +27,8 @@ void drain(const Peer& peer) {
 
 }  // namespace
 
-double round_trip(const Peer& peer, const char* action) {
+double round_trip(const Peer& peer, const char* action, bool* other_state_between) {
+  if (other_state_between != nullptr) *other_state_between = false;
   drain(peer);
   hub_msgs_msg_dds__DockCommand_ command{};
   hubrt::msgs::typed::assign(command.target_type, "dock");
@@ -45,7 +46,9 @@ double round_trip(const Peer& peer, const char* action) {
     bool echoed = false;
     for (dds_return_t i = 0; i < n; ++i) {
       const auto* state = static_cast<const hub_msgs_msg_dds__DockState_*>(samples[i]);
-      echoed = echoed || (infos[i].valid_data && std::strcmp(state->echo.action, action) == 0);
+      const bool echoes = infos[i].valid_data && std::strcmp(state->echo.action, action) == 0;
+      if (!echoes && infos[i].valid_data && other_state_between != nullptr) *other_state_between = true;
+      echoed = echoed || echoes;
     }
     if (n > 0) dds_return_loan(peer.reader, samples, n);
     if (echoed) return woke - sent;

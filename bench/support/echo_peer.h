@@ -23,8 +23,9 @@ struct Peer {
 };
 
 // One command out, until the State echoing its action is back: seconds, or -1 if none within a
-// second.
-double round_trip(const Peer& peer, const char* action);
+// second. `other_state_between`, when given, says whether another State (a hub's heartbeat, still
+// echoing the command before) arrived in between: the hub was publishing it when the command came.
+double round_trip(const Peer& peer, const char* action, bool* other_state_between = nullptr);
 
 // Writer on `command_topic`, reader on `state_topic` (DDS names), waiting up to 20 s for a reader
 // of the commands. Errors: Cyclone's refusal, or nobody reading (kTimeout).

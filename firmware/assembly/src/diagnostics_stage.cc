@@ -26,14 +26,28 @@ Expected<std::unique_ptr<DiagnosticsStage>> DiagnosticsStage::create(
     const dds::Participant& participant, const runtime::Hub& hub, std::string hardware_id, Duration interval,
     Duration command_timeout, Duration immediate_state_interval,
     const std::atomic<std::uint64_t>* log_lines_dropped) {
+  auto endpoint = open_endpoint(participant);
+  if (!endpoint) return std::move(endpoint).error();
+  return create(std::move(*endpoint), hub, std::move(hardware_id), interval, command_timeout,
+                immediate_state_interval, log_lines_dropped);
+}
+
+Expected<DiagnosticsStage::Endpoint> DiagnosticsStage::open_endpoint(const dds::Participant& participant) {
   auto topic =
       dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, hub_api::kDiagnosticsTopic);
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();
+  return Endpoint{std::move(*topic), std::move(*writer)};
+}
+
+std::unique_ptr<DiagnosticsStage> DiagnosticsStage::create(
+    Endpoint endpoint, const runtime::Hub& hub, std::string hardware_id, Duration interval,
+    Duration command_timeout, Duration immediate_state_interval,
+    const std::atomic<std::uint64_t>* log_lines_dropped) {
   return std::unique_ptr<DiagnosticsStage>(
-      new DiagnosticsStage(std::move(*topic), std::move(*writer), hub, std::move(hardware_id), interval,
-                           command_timeout, immediate_state_interval, log_lines_dropped));
+      new DiagnosticsStage(std::move(endpoint.topic), std::move(endpoint.writer), hub, std::move(hardware_id),
+                           interval, command_timeout, immediate_state_interval, log_lines_dropped));
 }
 
 DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,

@@ -16,6 +16,14 @@ class FakeSimulatedBackend final : public Simulation::SimulatedBackend {
   std::unique_ptr<hal::fake::FakeBackend> fake_;
 };
 
+// What prepare_bridge opened, for bridge() (the only maker and taker of it).
+struct FakePreparedBridge final : Simulation::PreparedBridge {
+  FakePreparedBridge(std::string hub, sim::SimBridgeStage::Entities opened)
+      : hub_name(std::move(hub)), entities(std::move(opened)) {}
+  std::string hub_name;
+  sim::SimBridgeStage::Entities entities;
+};
+
 class FakeSimulation final : public Simulation {
  public:
   Expected<std::unique_ptr<SimulatedBackend>> open_backend(const hal::BoardConfig& board,
@@ -25,15 +33,20 @@ class FakeSimulation final : public Simulation {
     return std::unique_ptr<SimulatedBackend>(std::make_unique<FakeSimulatedBackend>(std::move(*fake)));
   }
 
-  Expected<std::unique_ptr<runtime::CycleStage>> bridge(const dds::Participant& participant,
-                                                        const std::string& hub_name,
-                                                        const hal::BoardConfig& board,
-                                                        SimulatedBackend& backend,
-                                                        std::shared_ptr<spdlog::logger> log) const override {
-    auto stage =
-        sim::SimBridgeStage::create(participant, hub_name, board, fake_backend_of(backend), std::move(log));
-    if (!stage) return std::move(stage).error();
-    return std::unique_ptr<runtime::CycleStage>(std::move(*stage));
+  Expected<std::unique_ptr<PreparedBridge>> prepare_bridge(const dds::Participant& participant,
+                                                           const std::string& hub_name) const override {
+    auto entities = sim::SimBridgeStage::open_entities(participant, hub_name);
+    if (!entities) return std::move(entities).error();
+    return std::unique_ptr<PreparedBridge>(
+        std::make_unique<FakePreparedBridge>(hub_name, std::move(*entities)));
+  }
+
+  std::unique_ptr<runtime::CycleStage> bridge(std::unique_ptr<PreparedBridge> prepared,
+                                              const hal::BoardConfig& board, SimulatedBackend& backend,
+                                              std::shared_ptr<spdlog::logger> log) const override {
+    auto& fake_prepared = static_cast<FakePreparedBridge&>(*prepared);
+    return sim::SimBridgeStage::create(std::move(fake_prepared.entities), std::move(fake_prepared.hub_name),
+                                       board, fake_backend_of(backend), std::move(log));
   }
 };
 

@@ -104,16 +104,43 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
                                hub_user_data(started_ns, out->config.ros_namespace, out->config.name));
   if (!participant) return std::move(participant).error();
   out->participant.emplace(std::move(*participant));
+  std::unique_ptr<TwinWatch> watch;
   if (request.twin_check) {
-    auto watch = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
-    if (!watch) return std::move(watch).error();
-    // Before the backend: a twin refused here has opened no device and touched no output.
-    if (*request.twin_check > Duration::zero()) {
-      if (auto alone = (*watch)->check_at_start(*request.twin_check, request.twin_quiet); !alone)
-        return std::move(alone).error();
-    }
-    out->twin_watch = std::move(*watch);
+    auto started = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
+    if (!started) return std::move(started).error();
+    watch = std::move(*started);
   }
+
+  // While the twin check's window runs (it counts from TwinWatch::start): what needs no verdict —
+  // no device, no State writer (a running twin would see one as a twin of its own), nothing
+  // published. The hub object, the readers of other hubs' States, the /diagnostics endpoint and
+  // the sim bridge's entities.
+  runtime::HubOptions options;
+  options.type = out->config.type;
+  options.name = out->config.name;
+  options.period = out->config.period;
+  options.log = log;
+  out->hub = std::make_unique<runtime::Hub>(std::move(options));
+  out->subscriptions = std::make_unique<hub_api::Subscriptions>(out->config, *out->participant);
+  std::optional<DiagnosticsStage::Endpoint> diagnostics_endpoint;
+  if (out->config.diagnostics_hz > 0) {
+    auto endpoint = DiagnosticsStage::open_endpoint(*out->participant);
+    if (!endpoint) return std::move(endpoint).error();
+    diagnostics_endpoint.emplace(std::move(*endpoint));
+  }
+  std::unique_ptr<Simulation::PreparedBridge> prepared_bridge;
+  if (request.backend == BackendKind::kFake) {
+    auto prepared = request.simulation->prepare_bridge(*out->participant, out->config.name);
+    if (!prepared) return std::move(prepared).error();
+    prepared_bridge = std::move(*prepared);
+  }
+
+  // Before the backend: a twin refused here has opened no device and touched no output.
+  if (watch && *request.twin_check > Duration::zero()) {
+    if (auto alone = watch->check_at_start(*request.twin_check, request.twin_quiet); !alone)
+      return std::move(alone).error();
+  }
+  out->twin_watch = std::move(watch);
 
   if (request.backend == BackendKind::kFake) {
     auto simulated = request.simulation->open_backend(out->board, clock);
@@ -128,13 +155,6 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->devices = out->backend.get();
   }
 
-  runtime::HubOptions options;
-  options.type = out->config.type;
-  options.name = out->config.name;
-  options.period = out->config.period;
-  options.log = log;
-  out->hub = std::make_unique<runtime::Hub>(std::move(options));
-  out->subscriptions = std::make_unique<hub_api::Subscriptions>(out->config, *out->participant);
   out->hub->begin_opening_devices();
   const hub_api::HubContext context{out->config,   out->board, *out->devices, *out->participant,
                                     request.waker, log,        clock,         *out->subscriptions};
@@ -142,14 +162,12 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   // Other hubs' States are taken before the nodes step, so the logic sees this cycle's.
   if (auto stage = out->subscriptions->make_stage()) out->hub->add_first_stage(std::move(stage));
 
-  if (out->config.diagnostics_hz > 0) {
+  if (diagnostics_endpoint) {
     const auto interval =
         std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / out->config.diagnostics_hz));
-    auto diagnostics = DiagnosticsStage::create(
-        *out->participant, *out->hub, out->board.name, interval, out->config.command_timeout,
-        out->config.immediate_state_interval, request.log_lines_dropped);
-    if (!diagnostics) return std::move(diagnostics).error();
-    out->hub->add_stage(std::move(*diagnostics));
+    out->hub->add_stage(DiagnosticsStage::create(
+        std::move(*diagnostics_endpoint), *out->hub, out->board.name, interval, out->config.command_timeout,
+        out->config.immediate_state_interval, request.log_lines_dropped));
   }
   if (out->twin_watch) {
     auto twins =
@@ -159,10 +177,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->hub->add_stage(std::move(twins));
   }
   if (out->simulated) {
-    auto bridge =
-        request.simulation->bridge(*out->participant, out->config.name, out->board, *out->simulated, log);
-    if (!bridge) return std::move(bridge).error();
-    out->hub->add_stage(std::move(*bridge));
+    out->hub->add_stage(
+        request.simulation->bridge(std::move(prepared_bridge), out->board, *out->simulated, log));
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "hubrt/assembly/twin_rules.h"
 
+#include <algorithm>
 #include <charconv>
 #include <map>
 
@@ -53,11 +54,12 @@ std::optional<std::string_view> parse_hub_identity(std::string_view user_data) n
 }
 
 StartupVerdict StartupCheck::update(const std::vector<dds::WatchedParticipant>& participants,
-                                    std::uint64_t discovered, std::size_t twin_writers, Time now) {
+                                    std::uint64_t discovered, Time discovered_at, std::size_t twin_writers,
+                                    Time now) {
   if (twin_writers > 0) return StartupVerdict::kTwin;
   if (discovered != discovered_) {
     discovered_ = discovered;
-    last_new_ = now;
+    last_new_ = std::max(last_new_, std::clamp(discovered_at, begin_, now));
   }
   bool unnamed_hub = false;
   for (const dds::WatchedParticipant& other : participants) {
@@ -69,11 +71,19 @@ StartupVerdict StartupCheck::update(const std::vector<dds::WatchedParticipant>& 
     }
     if (!identity && parse_start_stamp(other.user_data)) unnamed_hub = true;
   }
+  unnamed_hub_ = unnamed_hub;
   const bool over = now - begin_ >= window_;
   if (claimed_) return over || now - claimed_at_ >= quiet_ ? StartupVerdict::kTwin : StartupVerdict::kWait;
   if (over) return StartupVerdict::kAlone;
   if (!unnamed_hub && now - last_new_ >= quiet_) return StartupVerdict::kAlone;
   return StartupVerdict::kWait;
+}
+
+Time StartupCheck::decides_by() const noexcept {
+  const Time window_end = begin_ + window_;
+  if (claimed_) return std::min(window_end, claimed_at_ + quiet_);
+  if (unnamed_hub_) return window_end;
+  return std::min(window_end, last_new_ + quiet_);
 }
 
 bool is_later(const HubStamp& a, const HubStamp& b) noexcept {

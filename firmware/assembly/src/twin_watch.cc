@@ -1,5 +1,6 @@
 #include "hubrt/assembly/twin_watch.h"
 
+#include <algorithm>
 #include <thread>
 
 #include <fmt/format.h>
@@ -7,6 +8,16 @@
 
 namespace hubrt::assembly {
 namespace {
+
+// The start-up check's clock (steady: a wall clock step must not end or stretch the window).
+Time steady_now() {
+  return Time(std::chrono::steady_clock::now().time_since_epoch());
+}
+
+// Longest sleep between two looks at discovery during the start-up check. A participant
+// discovered while the check sleeps counts from when it is seen, so a longer step only makes the
+// check later, never laxer; this step keeps that lateness (and so the verdict's) under 0.5 ms.
+constexpr Duration kStartupPollStep = std::chrono::microseconds(500);
 
 std::string describe(const TwinPeer& peer) {
   runtime::TextBuffer<128> origin;
@@ -22,8 +33,8 @@ Expected<std::unique_ptr<TwinWatch>> TwinWatch::start(const dds::Participant& pa
                                                       std::string ros_namespace, std::string hub_name,
                                                       std::shared_ptr<spdlog::logger> log) {
   std::string identity = fmt::format("{}/{}", ros_namespace, hub_name);
-  std::unique_ptr<TwinWatch> watch(
-      new TwinWatch(hub_name, std::move(identity), log ? std::move(log) : spdlog::default_logger()));
+  std::unique_ptr<TwinWatch> watch(new TwinWatch(
+      hub_name, std::move(identity), log ? std::move(log) : spdlog::default_logger(), steady_now()));
   TwinWatch* self = watch.get();
   auto writers = dds::WriterWatch::start(
       participant,
@@ -69,22 +80,25 @@ Expected<void> TwinWatch::check_at_start(Duration window, Duration quiet) const 
       std::chrono::duration_cast<std::chrono::milliseconds>(window).count(),
       std::chrono::duration_cast<std::chrono::milliseconds>(quiet).count(), hub_name_);
   // Polled rather than waited on: the window is short and this runs once, before the cycle.
-  const auto mono = [] { return Time(std::chrono::steady_clock::now().time_since_epoch()); };
-  const Time begin = mono();
+  // Counted from start(): what the caller did since overlapped the window.
+  const Time begin = started_;
   StartupCheck check(identity_, begin, window, quiet);
   std::uint64_t seen = 0;
   TwinSnapshot snapshot;
   for (;;) {
     copy_if_changed(seen, snapshot);
-    const Time now = mono();
+    const Time now = steady_now();
+    const std::uint64_t discovered = writers_->participants_discovered();
+    const Time discovered_at(writers_->last_discovered_at());
     const StartupVerdict verdict =
-        check.update(writers_->participants(), writers_->participants_discovered(), snapshot.count, now);
+        check.update(writers_->participants(), discovered, discovered_at, snapshot.count, now);
     if (verdict == StartupVerdict::kAlone) {
       log_->debug("twin: none after {:.1f} ms of discovery", to_seconds(now - begin) * 1e3);
       return {};
     }
     if (verdict == StartupVerdict::kTwin) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    // Until the rule can decide (StartupCheck::decides_by), looking at discovery meanwhile.
+    std::this_thread::sleep_for(std::min(kStartupPollStep, check.decides_by() - now));
   }
   std::string twins;
   for (std::size_t i = 0; i < snapshot.count; ++i) {

@@ -85,5 +85,46 @@ TEST_F(StartupCheckTest, TheSameHubNameInAnotherNamespaceIsNoTwin) {
   EXPECT_EQ(check_.update(others, 1, 0, at(16)), StartupVerdict::kAlone);
 }
 
+// The check looks at discovery only now and then (hubd creates DDS entities meanwhile): a
+// participant counts from when it was discovered, so the quiet time is not restarted late.
+TEST_F(StartupCheckTest, ADiscoveryCountsFromWhenItHappenedNotFromWhenTheCheckLooked) {
+  const std::vector others = {participant(1, "")};
+  // Discovered at 2 ms, first looked at 9 ms: settled at 2 + 15, not 9 + 15.
+  EXPECT_EQ(check_.update(others, 1, at(2), 0, at(9)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(17));
+  EXPECT_EQ(check_.update(others, 1, at(2), 0, at(16)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.update(others, 1, at(2), 0, at(17)), StartupVerdict::kAlone);
+}
+
+TEST_F(StartupCheckTest, ADiscoveryTimeOutsideTheCheckIsClampedToIt) {
+  const std::vector others = {participant(1, "")};
+  // Before the check began (a stale stamp): counts from the begin, never earlier.
+  EXPECT_EQ(check_.update(others, 1, begin_ - milliseconds(50), 0, at(1)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(15));
+  // In the future of the look (clocks read in another order): counts from the look.
+  EXPECT_EQ(check_.update({others[0], participant(2, "")}, 2, at(30), 0, at(5)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(20));
+  EXPECT_EQ(check_.update({others[0], participant(2, "")}, 2, at(30), 0, at(19)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.update({others[0], participant(2, "")}, 2, at(30), 0, at(20)), StartupVerdict::kAlone);
+}
+
+TEST_F(StartupCheckTest, DecidesByIsWhenTheRuleCanFirstGiveAVerdict) {
+  EXPECT_EQ(check_.decides_by(), at(15));  // before any look: an empty domain settles then
+  const std::vector hub = {participant(1, hub_user_data(5, "", "tool_ecu"))};
+  EXPECT_EQ(check_.update(hub, 1, at(3), 0, at(4)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(18));
+  // An older hub without an identity: only the window ends the check.
+  const std::vector older = {hub[0], participant(2, start_stamp_user_data(5))};
+  EXPECT_EQ(check_.update(older, 2, at(6), 0, at(7)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(300));
+}
+
+TEST_F(StartupCheckTest, DecidesByAfterATwinsIdentityIsTheEndOfItsWaitForWriters) {
+  const std::vector twin = {participant(7, hub_user_data(5, "", "dock_ecu"))};
+  EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(2)), StartupVerdict::kWait);
+  EXPECT_EQ(check_.decides_by(), at(17));
+  EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(17)), StartupVerdict::kTwin);
+}
+
 }  // namespace
 }  // namespace hubrt::assembly

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <map>
 #include <tuple>
 
@@ -218,7 +219,12 @@ void WriterWatch::refresh() noexcept {
         if (!known) ++added;
       }
       participants_current_ = std::move(others);
-      if (added > 0) participants_discovered_.fetch_add(added, std::memory_order_release);
+      if (added > 0) {
+        const auto at = std::chrono::duration_cast<std::chrono::nanoseconds>(
+            std::chrono::steady_clock::now().time_since_epoch());
+        last_discovered_ns_.store(at.count(), std::memory_order_release);
+        participants_discovered_.fetch_add(added, std::memory_order_release);
+      }
     }
     if (writers_unchanged) return;
     std::vector<WatchedWriter> writers;

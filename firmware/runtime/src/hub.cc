@@ -24,6 +24,7 @@ Hub::Hub(HubOptions options) : options_(std::move(options)) {
 void Hub::add_node(std::unique_ptr<NodeBase> node) {
   node->watch_alerts(&alerts_);
   nodes_.push_back(std::move(node));
+  stepped_.push_back(0);
 }
 void Hub::add_stage(std::unique_ptr<CycleStage> stage) {
   stages_.push_back(std::move(stage));
@@ -62,14 +63,30 @@ void Hub::command_step(const Instant& now) noexcept {
 void Hub::step(const Instant& now, bool publish_all) noexcept {
   for (const auto& stage : stages_) stage->before_nodes(now);
   bool any_took_effect = false;
-  for (const auto& node : nodes_) {
-    const bool took_effect = node->step(now);
-    any_took_effect |= took_effect;
-    const Status published = publish_all ? node->publish(now) : node->publish_if_due(now, took_effect);
-    if (!published.is_ok()) ++stats_.publish_errors;
+  if (publish_all) {
+    for (std::size_t i = 0; i < nodes_.size(); ++i) any_took_effect |= step_node(i, now, true);
+  } else {
+    // The nodes a command may be waiting for first, so that the echo goes out before the other
+    // nodes read their inputs and rebuild their States; then every node not stepped yet. Whether
+    // a command arrives in between changes the order only: each node steps exactly once.
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      stepped_[i] = nodes_[i]->may_have_command() ? 1 : 0;
+      if (stepped_[i] != 0) any_took_effect |= step_node(i, now, false);
+    }
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      if (stepped_[i] == 0) any_took_effect |= step_node(i, now, false);
+    }
   }
   derive_lifecycle();
   for (const auto& stage : stages_) stage->after_nodes(now, publish_all, any_took_effect);
+}
+
+bool Hub::step_node(std::size_t index, const Instant& now, bool publish_all) noexcept {
+  NodeBase& node = *nodes_[index];
+  const bool took_effect = node.step(now);
+  const Status published = publish_all ? node.publish(now) : node.publish_if_due(now, took_effect);
+  if (!published.is_ok()) ++stats_.publish_errors;
+  return took_effect;
 }
 
 void Hub::begin_opening_devices() noexcept {

@@ -29,6 +29,21 @@ Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Part
                                                                  const hal::BoardConfig& board,
                                                                  hal::fake::FakeBackend& fake,
                                                                  std::shared_ptr<spdlog::logger> log) {
+  auto entities = open_entities(participant, hub_name);
+  if (!entities) return std::move(entities).error();
+  return create(std::move(*entities), std::move(hub_name), board, fake, std::move(log));
+}
+
+std::unique_ptr<SimBridgeStage> SimBridgeStage::create(Entities entities, std::string hub_name,
+                                                       const hal::BoardConfig& board,
+                                                       hal::fake::FakeBackend& fake,
+                                                       std::shared_ptr<spdlog::logger> log) {
+  return std::unique_ptr<SimBridgeStage>(
+      new SimBridgeStage(std::move(entities), std::move(hub_name), board, fake, std::move(log)));
+}
+
+Expected<SimBridgeStage::Entities> SimBridgeStage::open_entities(const dds::Participant& participant,
+                                                                 const std::string& hub_name) {
   // Set by Cyclone's data-available listener of the three readers (no blocking: an atomic store),
   // so that a cycle with nothing received takes nothing: three empty dds_take calls per cycle were
   // most of what the bridge cost once the signals were written only on change.
@@ -54,11 +69,9 @@ Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Part
   if (!signals_topic) return std::move(signals_topic).error();
   auto writer = dds::Writer<hub_msgs_msg_dds__SimSignals_>::create(participant, *signals_topic);
   if (!writer) return std::move(writer).error();
-  Entities entities{std::move(pending),       std::move(*input_topic),   std::move(*input_reader),
-                    std::move(*fault_topic),  std::move(*fault_reader),  std::move(*badge_topic),
-                    std::move(*badge_reader), std::move(*signals_topic), std::move(*writer)};
-  return std::unique_ptr<SimBridgeStage>(
-      new SimBridgeStage(std::move(entities), std::move(hub_name), board, fake, std::move(log)));
+  return Entities{std::move(pending),       std::move(*input_topic),   std::move(*input_reader),
+                  std::move(*fault_topic),  std::move(*fault_reader),  std::move(*badge_topic),
+                  std::move(*badge_reader), std::move(*signals_topic), std::move(*writer)};
 }
 
 SimBridgeStage::SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,

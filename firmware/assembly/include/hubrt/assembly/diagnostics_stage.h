@@ -42,6 +42,21 @@ class DiagnosticsStage final : public runtime::CycleStage {
       Duration interval, Duration command_timeout = {}, Duration immediate_state_interval = {},
       const std::atomic<std::uint64_t>* log_lines_dropped = nullptr);
 
+  // The stage's DDS side alone (the /diagnostics topic and writer), which needs no node: hubd
+  // creates it while the start-up twin check watches discovery (it publishes nothing until the
+  // stage runs, and /diagnostics is no State topic), so that it does not add to the start-up.
+  struct Endpoint {
+    dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic;
+    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer;
+  };
+  // Errors: the DDS topic or writer that could not be created.
+  static Expected<Endpoint> open_endpoint(const dds::Participant& participant);
+  // As create() above, on an endpoint opened before. Never fails.
+  static std::unique_ptr<DiagnosticsStage> create(
+      Endpoint endpoint, const runtime::Hub& hub, std::string hardware_id, Duration interval,
+      Duration command_timeout = {}, Duration immediate_state_interval = {},
+      const std::atomic<std::uint64_t>* log_lines_dropped = nullptr);
+
   void before_nodes(const Instant& /*now*/) noexcept override {}
   void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
 

@@ -34,11 +34,21 @@ class Simulation {
   // must outlive it). Errors: the simulators' (e.g. a Modbus server port in use).
   [[nodiscard]] virtual Expected<std::unique_ptr<SimulatedBackend>> open_backend(
       const hal::BoardConfig& board, const Clock& clock) const = 0;
-  // The sim bridge stage of hub `hub_name` over `backend` (from open_backend, outliving the
-  // stage). Errors: the DDS entity that could not be created.
-  [[nodiscard]] virtual Expected<std::unique_ptr<runtime::CycleStage>> bridge(
-      const dds::Participant& participant, const std::string& hub_name, const hal::BoardConfig& board,
-      SimulatedBackend& backend, std::shared_ptr<spdlog::logger> log) const = 0;
+  // The sim bridge's DDS entities for hub `hub_name` (readers of /sim/input, /sim/fault,
+  // /sim/badge, the writer of /sim/<hub>/signals), without the backend: no device, and nothing is
+  // published until the stage runs, so hubd opens them while its start-up twin check watches
+  // discovery instead of after it. Errors: the DDS entity that could not be created.
+  class PreparedBridge {
+   public:
+    virtual ~PreparedBridge() = default;
+  };
+  [[nodiscard]] virtual Expected<std::unique_ptr<PreparedBridge>> prepare_bridge(
+      const dds::Participant& participant, const std::string& hub_name) const = 0;
+  // The sim bridge stage over `prepared` (from prepare_bridge) and `backend` (from open_backend,
+  // outliving the stage). Never fails.
+  [[nodiscard]] virtual std::unique_ptr<runtime::CycleStage> bridge(
+      std::unique_ptr<PreparedBridge> prepared, const hal::BoardConfig& board, SimulatedBackend& backend,
+      std::shared_ptr<spdlog::logger> log) const = 0;
 };
 
 // The message of a program built without a simulation that is asked to run a simulated board.

@@ -102,7 +102,21 @@ class StartupCheck {
   // `participants`: every other participant known now; `discovered`: how many were newly
   // discovered since the watch began (grows); `twin_writers`: writers of this hub's States seen.
   StartupVerdict update(const std::vector<dds::WatchedParticipant>& participants, std::uint64_t discovered,
-                        std::size_t twin_writers, Time now);
+                        std::size_t twin_writers, Time now) {
+    return update(participants, discovered, now, twin_writers, now);
+  }
+  // The same, with `discovered_at`: when `discovered` last grew (dds::WriterWatch::
+  // last_discovered_at), so that a check which looks only now and then (the caller did other work
+  // meanwhile) restarts the quiet time from the discovery, not from when it looked. Clamped to
+  // [begin, now]: never earlier than the check, never in the future.
+  StartupVerdict update(const std::vector<dds::WatchedParticipant>& participants, std::uint64_t discovered,
+                        Time discovered_at, std::size_t twin_writers, Time now);
+  // When, if nothing new is discovered, the next update() can first return a verdict: the end of
+  // the quiet time after the last newly discovered participant (or after a twin's identity was
+  // seen), or the end of the window, whichever comes first. The start-up check sleeps until then
+  // instead of polling at a fixed step, so its verdict comes when the rule allows, not up to one
+  // polling step later. Valid after the last update(); begin + quiet before any.
+  [[nodiscard]] Time decides_by() const noexcept;
   // True when the verdict came from a participant's identity before any of its writers was seen.
   [[nodiscard]] bool twin_by_identity() const noexcept { return claimed_; }
   // The participant that announced this hub's identity (meaningful when twin_by_identity()).
@@ -115,6 +129,7 @@ class StartupCheck {
   Duration window_;
   Duration quiet_;
   std::uint64_t discovered_ = 0;
+  bool unnamed_hub_ = false;  // a hub without an identity was seen: only the window ends the check
   bool claimed_ = false;
   Time claimed_at_{};
   dds::Guid claimant_{};

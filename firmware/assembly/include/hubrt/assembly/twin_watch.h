@@ -54,9 +54,12 @@ class TwinWatch {
   TwinWatch& operator=(const TwinWatch&) = delete;
 
   // Watches discovery until StartupCheck (twin_rules.h) decides: at most `window`, less once
-  // discovery has been `quiet`. Errors: kBusy naming each twin's topic, host and pid, when
-  // another participant writes this hub's States or announces this hub's identity.
-  // Blocks the calling thread: call it before opening devices, never from the cycle.
+  // discovery has been `quiet`, both counted from start() — so the caller may do what needs no
+  // verdict (DDS entities that publish nothing and are no State writer) between start() and this
+  // call, and that work overlaps the window instead of adding to it. Errors: kBusy naming each
+  // twin's topic, host and pid, when another participant writes this hub's States or announces
+  // this hub's identity. Blocks the calling thread: call it before opening devices and before
+  // creating any State writer, never from the cycle.
   Expected<void> check_at_start(Duration window, Duration quiet = kDefaultTwinCheckQuiet) const;
 
   // Copies the current twins into `out` when they changed since `seen` (then updates `seen`).
@@ -64,13 +67,17 @@ class TwinWatch {
   void copy_if_changed(std::uint64_t& seen, TwinSnapshot& out) const noexcept;
 
  private:
-  TwinWatch(std::string hub_name, std::string identity, std::shared_ptr<spdlog::logger> log)
-      : hub_name_(std::move(hub_name)), identity_(std::move(identity)), log_(std::move(log)) {}
+  TwinWatch(std::string hub_name, std::string identity, std::shared_ptr<spdlog::logger> log, Time started)
+      : hub_name_(std::move(hub_name)),
+        identity_(std::move(identity)),
+        log_(std::move(log)),
+        started_(started) {}
   void changed(const std::vector<dds::WatchedWriter>& writers);
 
   std::string hub_name_;
   std::string identity_;  // "<ros_namespace>/<hub>", as hub_user_data() announces it
   std::shared_ptr<spdlog::logger> log_;
+  Time started_;  // steady clock, when discovery began to be watched: the start-up check's begin
   mutable std::mutex mutex_;
   TwinSnapshot snapshot_;
   std::atomic<std::uint64_t> generation_{0};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -74,6 +75,12 @@ class WriterWatch {
   [[nodiscard]] std::uint64_t participants_discovered() const noexcept {
     return participants_discovered_.load(std::memory_order_acquire);
   }
+  // When participants_discovered() last grew: std::chrono::steady_clock's time since its epoch,
+  // taken on Cyclone's thread as the watch learnt of the participant (zero before any). Lets a
+  // caller that looks only now and then count a discovery from when it happened.
+  [[nodiscard]] std::chrono::nanoseconds last_discovered_at() const noexcept {
+    return std::chrono::nanoseconds(last_discovered_ns_.load(std::memory_order_acquire));
+  }
 
  private:
   WriterWatch(Guid self, TopicFilter filter, WritersChanged changed);
@@ -93,6 +100,7 @@ class WriterWatch {
   std::vector<WatchedWriter> current_;
   std::vector<WatchedParticipant> participants_current_;
   std::atomic<std::uint64_t> participants_discovered_{0};
+  std::atomic<std::int64_t> last_discovered_ns_{0};  // stored before participants_discovered_ grows
   bool reported_ = false;
   std::atomic<bool> ready_{false};  // both readers exist: callbacks before that are ignored
   EntityHandle participants_;

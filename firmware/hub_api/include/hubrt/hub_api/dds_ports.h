@@ -3,7 +3,9 @@
 // (Cyclone grows a taken sample's strings only when a longer one arrives).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <utility>
 
 #include "hubrt/dds/reader.h"
@@ -23,21 +25,33 @@ namespace hubrt::hub_api {
 inline constexpr std::int32_t kCommandHistoryDepth = 1;
 
 // Thread-safety: next() on the cycle thread only.
+// `arrived`: set (release) by the reader's data-available listener on Cyclone's thread when a
+// command arrives; may be null (then may_have_command() always says true).
 template <dds::TopicType Command>
 class DdsCommandSource final : public runtime::CommandSource<Command> {
  public:
-  explicit DdsCommandSource(dds::Reader<Command> reader) : reader_(std::move(reader)) {}
+  explicit DdsCommandSource(dds::Reader<Command> reader, std::shared_ptr<std::atomic<bool>> arrived = nullptr)
+      : reader_(std::move(reader)), arrived_(std::move(arrived)) {}
 
   Result<const Command*> next() noexcept override {
+    // Cleared before the take: a command arriving during or after it sets the flag again.
+    if (arrived_) arrived_->store(false, std::memory_order_relaxed);
     const Result<bool> taken = reader_.take_next(sample_);
+    if (!taken.is_ok() || taken.value()) {
+      if (arrived_) arrived_->store(true, std::memory_order_relaxed);  // more may follow
+    }
     if (!taken.is_ok()) return taken.status();
     return taken.value() ? &sample_.get() : static_cast<const Command*>(nullptr);
+  }
+  [[nodiscard]] bool may_have_command() const noexcept override {
+    return !arrived_ || arrived_->load(std::memory_order_acquire);
   }
   [[nodiscard]] const dds::Reader<Command>& reader() const noexcept { return reader_; }
 
  private:
   dds::Reader<Command> reader_;
   dds::Sample<Command> sample_;
+  std::shared_ptr<std::atomic<bool>> arrived_;
 };
 
 // Thread-safety: publish() on the cycle thread only.

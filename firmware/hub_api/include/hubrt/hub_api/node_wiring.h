@@ -50,9 +50,13 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   auto command_topic = dds::Topic<Command>::create(
       context.participant, node_command_topic(context.config.ros_namespace, Logic::kType));
   if (!command_topic) return fail(command_topic.error());
-  auto reader =
-      dds::Reader<Command>::create(context.participant, *command_topic,
-                                   dds::Qos::ros2_default(kCommandHistoryDepth), [waker] { waker.wake(); });
+  // The listener marks that a command arrived (the hub steps this node first) and wakes the cycle.
+  auto arrived = std::make_shared<std::atomic<bool>>(true);
+  auto reader = dds::Reader<Command>::create(context.participant, *command_topic,
+                                             dds::Qos::ros2_default(kCommandHistoryDepth), [waker, arrived] {
+                                               arrived->store(true, std::memory_order_release);
+                                               waker.wake();
+                                             });
   if (!reader) return fail(reader.error());
   auto state_topic = dds::Topic<State>::create(
       context.participant, node_state_topic(context.config.ros_namespace, context.config.name, node.name));
@@ -65,8 +69,8 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   if (!writer) return fail(writer.error());
 
   auto ports = std::make_shared<NodeTypePorts<Logic>>(NodeTypePorts<Logic>{
-      std::move(*command_topic), std::move(*state_topic), DdsCommandSource<Command>(std::move(*reader)),
-      DdsStateSink<State>(std::move(*writer))});
+      std::move(*command_topic), std::move(*state_topic),
+      DdsCommandSource<Command>(std::move(*reader), arrived), DdsStateSink<State>(std::move(*writer))});
   runtime::NodeOptions options;
   options.name = node.name;
   options.command_timeout = context.config.command_timeout;

@@ -71,6 +71,8 @@ class Hub {
   // A periodic cycle at `now`; publishes every State.
   void cycle(const Instant& now) noexcept;
   // A step between cycles because commands arrived; publishes States whose command took effect.
+  // The nodes a command may be waiting for (NodeBase::may_have_command) step first, in the order
+  // they were added, then the others: a command's echo is not held behind other nodes' work.
   void command_step(const Instant& now) noexcept;
   // Overruns observed by the timer (periods that passed without a cycle).
   void count_overruns(std::uint64_t missed) noexcept { stats_.overruns += missed; }
@@ -97,12 +99,15 @@ class Hub {
 
  private:
   void step(const Instant& now, bool publish_all) noexcept;
+  // Steps node `index` (and publishes as the kind of step says); true when a command took effect.
+  bool step_node(std::size_t index, const Instant& now, bool publish_all) noexcept;
   // The worst state of the nodes after a step, unless the hub is stopping.
   void derive_lifecycle() noexcept;
   void log_transition() const noexcept;
 
   HubOptions options_;
   std::vector<std::unique_ptr<NodeBase>> nodes_;
+  std::vector<std::uint8_t> stepped_;  // per node, within one command step (sized by add_node)
   std::vector<std::unique_ptr<CycleStage>> stages_;
   std::vector<std::shared_ptr<void>> owned_;
   HubAlerts alerts_;

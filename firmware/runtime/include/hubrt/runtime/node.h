@@ -101,6 +101,9 @@ class NodeBase {
   // A State for a new reader counts in the budget like a command's (a peer creating readers in a
   // loop cannot make the hub publish more than a command flood could).
   virtual Status publish_if_due(const Instant& now, bool took_effect) noexcept = 0;
+  // A command may be waiting for this node (CommandSource::may_have_command): a command step
+  // steps it before the nodes without one. True when the node cannot tell.
+  [[nodiscard]] virtual bool may_have_command() const noexcept { return true; }
   // The hub is stopping: drives the outputs safe; the node's lifecycle goes to safe.
   virtual void enter_safe_state() noexcept = 0;
   [[nodiscard]] virtual Health health() const noexcept = 0;
@@ -241,6 +244,8 @@ class Node final : public NodeBase {
     state_.header().stamp().set_nanosec(static_cast<std::uint32_t>(now.wall.ns_since_epoch % 1'000'000'000));
     return sink_.publish(state_.wire());
   }
+
+  [[nodiscard]] bool may_have_command() const noexcept override { return source_.may_have_command(); }
 
   void enter_safe_state() noexcept override {
     stopping_ = true;

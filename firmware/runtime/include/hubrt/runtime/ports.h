@@ -14,6 +14,12 @@ class CommandSource {
   // The next received command, or nullptr when none is pending. The pointee stays valid until
   // the next call. Errors: whatever the transport reports (the node logs them and carries on).
   virtual Result<const Command*> next() noexcept = 0;
+  // False only when the transport knows that no command has arrived since next() last returned
+  // none (the DDS source: its reader's data-available listener sets a flag, next() clears it);
+  // true when one may be waiting, or when the source cannot tell. A command step steps the nodes
+  // whose source says true first (Hub::command_step), so that a command's echo does not wait for
+  // the other nodes' work. A hint for the order only: every node still steps. Allocation-free.
+  [[nodiscard]] virtual bool may_have_command() const noexcept { return true; }
 };
 
 // Thread-safety: called only from the cycle thread.

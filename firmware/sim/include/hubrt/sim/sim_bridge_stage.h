@@ -49,6 +49,27 @@ class SimBridgeStage final : public runtime::CycleStage {
                                                           hal::fake::FakeBackend& fake,
                                                           std::shared_ptr<spdlog::logger> log);
 
+  // The stage's DDS side alone (needs no backend): hubd opens it while its start-up twin check
+  // runs (Simulation::prepare_bridge). Nothing is published until the stage runs.
+  struct Entities {
+    // Something arrived on one of the three readers since the last look (their listener sets it).
+    std::shared_ptr<std::atomic<bool>> pending;
+    dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
+    dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
+    dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
+    dds::Reader<hub_msgs_msg_dds__SimFault_> fault_reader;
+    dds::Topic<hub_msgs_msg_dds__SimBadge_> badge_topic;
+    dds::Reader<hub_msgs_msg_dds__SimBadge_> badge_reader;
+    dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic;
+    dds::Writer<hub_msgs_msg_dds__SimSignals_> signals_writer;
+  };
+  // Errors: the DDS entities.
+  static Expected<Entities> open_entities(const dds::Participant& participant, const std::string& hub_name);
+  // As create() above, on entities opened before. Never fails.
+  static std::unique_ptr<SimBridgeStage> create(Entities entities, std::string hub_name,
+                                                const hal::BoardConfig& board, hal::fake::FakeBackend& fake,
+                                                std::shared_ptr<spdlog::logger> log);
+
   void before_nodes(const Instant& now) noexcept override;
   void after_nodes(const Instant& now, bool publish_all, bool took_effect) noexcept override;
   // Publishes the signals once more, after the hub drove its outputs safe on the way out.
@@ -66,18 +87,6 @@ class SimBridgeStage final : public runtime::CycleStage {
     // of a simulated hub's cycle (callgrind). Chips are never removed from the fake GPIO, so the
     // pointer stays valid; unresolved (chip missing at start) reads by name.
     std::optional<hal::fake::FakeBackend::Wiring> wiring;
-  };
-  struct Entities {
-    // Something arrived on one of the three readers since the last look (their listener sets it).
-    std::shared_ptr<std::atomic<bool>> pending;
-    dds::Topic<hub_msgs_msg_dds__SimInput_> input_topic;
-    dds::Reader<hub_msgs_msg_dds__SimInput_> input_reader;
-    dds::Topic<hub_msgs_msg_dds__SimFault_> fault_topic;
-    dds::Reader<hub_msgs_msg_dds__SimFault_> fault_reader;
-    dds::Topic<hub_msgs_msg_dds__SimBadge_> badge_topic;
-    dds::Reader<hub_msgs_msg_dds__SimBadge_> badge_reader;
-    dds::Topic<hub_msgs_msg_dds__SimSignals_> signals_topic;
-    dds::Writer<hub_msgs_msg_dds__SimSignals_> signals_writer;
   };
   SimBridgeStage(Entities entities, std::string hub_name, const hal::BoardConfig& board,
                  hal::fake::FakeBackend& fake, std::shared_ptr<spdlog::logger> log);
