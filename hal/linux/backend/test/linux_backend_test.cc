@@ -82,6 +82,9 @@ TEST(LinuxBackend, ModbusGoesToLibmodbus) {
 // module, every program linking the Linux backend had libcpp-httplib among its ELF NEEDED.
 // One test for both halves: the order matters and a process cannot unload the module again.
 TEST(LinuxBackend, HttpClientLibraryIsLoadedOnlyWhenAnHttpDeviceIsOpened) {
+  if (HUBRT_HTTP_MODULE_IN_BUILD_TREE == 0) {
+    GTEST_SKIP() << "cross build: hubrt-http.so is found only where a board package installs it";
+  }
   LinuxBackend backend;
   EXPECT_THAT(own_mappings(), Not(HasSubstr("libcpp-httplib"))) << "linked in, not loaded on demand";
   auto client = backend.open_http(mir_config());  // connects nothing until a request is sent
