@@ -62,6 +62,32 @@ endfunction()
 # One gtest binary; each TEST() becomes its own CTest entry (listed at test time, so that
 # cross builds list them through the emulator only when tests run). LABELS: unit (default),
 # integration, conformance, threaded (also run under TSan), slow (not in the default suite).
+# A module a program loads with dlopen (hal/common/module_loader.h), e.g. the HTTP client, so that
+# only a hub that needs it maps its libraries. It exports its entry point only: the copies of the
+# libraries linked into it stay its own.
+#   hubrt_add_module(<target> OUTPUT_NAME <file name without .so> SOURCES ... LIBS ...)
+function(hubrt_add_module target)
+  cmake_parse_arguments(ARG "" "OUTPUT_NAME" "SOURCES;LIBS" ${ARGN})
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE ${ARG_LIBS})
+  set_target_properties(${target} PROPERTIES PREFIX "" OUTPUT_NAME ${ARG_OUTPUT_NAME}
+    CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  target_link_options(${target} PRIVATE -Wl,--exclude-libs,ALL)
+  hubrt_target_defaults(${target})
+endfunction()
+
+# The library that loads `module`: whatever links it gets the module built too. In a native build
+# it is also told the module's file in the build tree (the macro `define`), so programs and tests
+# run from the build tree find it; a cross build's programs find it only where a package installs it.
+function(hubrt_module_loader loader module define)
+  if(CMAKE_CROSSCOMPILING)
+    target_compile_definitions(${loader} PRIVATE ${define}="")
+  else()
+    target_compile_definitions(${loader} PRIVATE ${define}="$<TARGET_FILE:${module}>")
+  endif()
+  add_dependencies(${loader} ${module})
+endfunction()
+
 function(hubrt_add_test name)
   if(NOT HUBRT_BUILD_TESTS)
     return()
