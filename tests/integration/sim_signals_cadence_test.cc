@@ -25,6 +25,27 @@ namespace {
 
 using Signals = hub_msgs_msg_dds__SimSignals_;
 
+// A reader of the Dock ECU's simulation signals in a participant of its own, matched to the hub's
+// writer, deep enough to keep every sample the hub could write in a test's window (one per cycle).
+struct SignalsWatcher {
+  dds::Participant participant;
+  dds::Topic<Signals> topic;
+  dds::Reader<Signals> reader;
+};
+
+Expected<SignalsWatcher> watch_signals(const test_support::TestDomain& domain) {
+  auto participant = dds::Participant::create(domain.config(), "signals_watcher");
+  if (!participant) return std::move(participant).error();
+  auto topic = dds::Topic<Signals>::create(*participant, sim::sim_signals_topic("dock_ecu"));
+  if (!topic) return std::move(topic).error();
+  auto reader = dds::Reader<Signals>::create(*participant, *topic, dds::Qos::ros2_default(5000));
+  if (!reader) return std::move(reader).error();
+  if (!reader->wait_for_writers(1, std::chrono::seconds(20))) {
+    return make_error(ErrorCode::kTimeout, "the hub's signals writer was not matched within 20 s");
+  }
+  return SignalsWatcher{std::move(*participant), std::move(*topic), std::move(*reader)};
+}
+
 TEST(SimSignalsCadence, WrittenOnChangeAndKeepAliveNotEveryCycle) {
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
@@ -33,14 +54,9 @@ TEST(SimSignalsCadence, WrittenOnChangeAndKeepAliveNotEveryCycle) {
   ASSERT_TRUE(assembled) << assembled.error().message;
   runtime::Hub& hub = *(*assembled)->hub;
 
-  auto participant = dds::Participant::create(domain->config(), "signals_watcher");
-  ASSERT_TRUE(participant) << participant.error().message;
-  auto topic = dds::Topic<Signals>::create(*participant, sim::sim_signals_topic("dock_ecu"));
-  ASSERT_TRUE(topic) << topic.error().message;
-  // Deep enough to keep every sample the hub could write in the window (one per cycle).
-  auto reader = dds::Reader<Signals>::create(*participant, *topic, dds::Qos::ros2_default(5000));
-  ASSERT_TRUE(reader) << reader.error().message;
-  ASSERT_TRUE(reader->wait_for_writers(1, std::chrono::seconds(20)));
+  auto watcher = watch_signals(*domain);
+  ASSERT_TRUE(watcher) << watcher.error().message;
+  auto& reader = watcher->reader;
 
   constexpr int kCycles = 1000;
   timespec next{};
@@ -59,7 +75,7 @@ TEST(SimSignalsCadence, WrittenOnChangeAndKeepAliveNotEveryCycle) {
   };
   run(200);  // the reader matched: the bridge writes at once; the outputs settle
   dds::Sample<Signals> sample;
-  while (reader->take_next(sample).value_or(false)) {
+  while (reader.take_next(sample).value_or(false)) {
   }
   const auto started = std::chrono::steady_clock::now();
   run(kCycles);
@@ -67,7 +83,7 @@ TEST(SimSignalsCadence, WrittenOnChangeAndKeepAliveNotEveryCycle) {
   std::size_t received = 0;
   // Delivery in this process is synchronous; a short grace for Cyclone's delivery thread anyway.
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  while (reader->take_next(sample).value_or(false)) ++received;
+  while (reader.take_next(sample).value_or(false)) ++received;
   // One keep-alive per 100 ms of the window (it lasts longer than 1 s when the machine is loaded).
   const auto keep_alives = static_cast<std::size_t>(elapsed / sim::kSimSignalsKeepAlive) + 2;
   std::printf("[signals] %d cycles in %.0f ms: %zu SimSignals samples (keep-alive bound %zu)\n", kCycles,
@@ -120,13 +136,9 @@ TEST(SimSignalsCadence, NotReadWhileNobodyListens) {
   };
   const std::uint64_t unheard = clock_reads_per_cycle();
 
-  auto participant = dds::Participant::create(domain->config(), "signals_watcher");
-  ASSERT_TRUE(participant) << participant.error().message;
-  auto topic = dds::Topic<Signals>::create(*participant, sim::sim_signals_topic("dock_ecu"));
-  ASSERT_TRUE(topic) << topic.error().message;
-  auto reader = dds::Reader<Signals>::create(*participant, *topic, dds::Qos::ros2_default(5000));
-  ASSERT_TRUE(reader) << reader.error().message;
-  ASSERT_TRUE(reader->wait_for_writers(1, std::chrono::seconds(20)));
+  auto watcher = watch_signals(*domain);
+  ASSERT_TRUE(watcher) << watcher.error().message;
+  auto& reader = watcher->reader;
   const std::uint64_t heard = clock_reads_per_cycle();
 
   const auto signals =
@@ -139,7 +151,7 @@ TEST(SimSignalsCadence, NotReadWhileNobodyListens) {
   // The reader got the signals once it matched (the bridge writes at once for a new reader).
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // Cyclone's delivery, in this process
   dds::Sample<Signals> sample;
-  EXPECT_TRUE(reader->take_next(sample).value_or(false));
+  EXPECT_TRUE(reader.take_next(sample).value_or(false));
 }
 
 }  // namespace
