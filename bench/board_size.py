@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""Stripped size of the board hubd (target hubd_board: /usr/bin/hubd of the board packages) for
-each Raspberry Pi target, for bench/run and docs/benchmarks.md.
+"""Stripped size of the board programs of hubd for each Raspberry Pi target, for bench/run and
+docs/benchmarks.md: each hub type's (target hubd_board_<hub type>, board/<hub type>/hubd: what a
+board package installs as /usr/bin/hubd) and, for comparison, hubd_board with every hub type.
 
-For a target whose sysroot toolchain/prepare-target made, builds hubd_board in build/cross-<arch>
-(the cross presets' flags: -Os, LTO for this program only; configures the preset first when the
-folder has none), strips a copy with the cross binutils and records its size and the sizes of its
-sections. A target without a sysroot is recorded as not prepared.
+For a target whose sysroot toolchain/prepare-target made, builds them in build/cross-<arch> (the
+cross presets' flags; configures the preset first when the folder has none), strips copies with the
+cross binutils and records their sizes and the sizes of their sections. A target without a sysroot
+is recorded as not prepared.
     bench/board_size.py --out FILE [--arch arm64 armhf] [--jobs N]
 """
 import argparse
@@ -53,6 +54,28 @@ def sections(triplet, path):
     return found
 
 
+def hub_types():
+    """The hub types, as firmware/hubd names their board programs: hubs/<name>/ registering one."""
+    hubs = os.path.join(ROOT, "hubs")
+    found = []
+    for name in sorted(os.listdir(hubs)):
+        cmake = os.path.join(hubs, name, "CMakeLists.txt")
+        if os.path.isfile(cmake) and "hubrt_register_hub_type(" in open(cmake).read():
+            found.append(name)
+    return found
+
+
+def stripped_size(triplet, program):
+    with tempfile.TemporaryDirectory() as scratch:
+        stripped = os.path.join(scratch, "hubd")
+        subprocess.run([f"{triplet}-strip", "-o", stripped, program], check=True)
+        size = os.path.getsize(stripped)
+        found = sections(triplet, stripped)
+    groups = {name: sum(found.get(s, 0) for s in members) for name, members in GROUPS.items()}
+    groups["other"] = sum(found.values()) - sum(groups.values())
+    return size, groups
+
+
 def measure(arch, jobs):
     triplet = TRIPLETS[arch]
     if not os.path.exists(os.path.join(sysroot(arch), ".hubrt-sysroot")):
@@ -61,21 +84,20 @@ def measure(arch, jobs):
     nice = ["nice", "-n", "19"]
     if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
         subprocess.run(nice + ["cmake", "--preset", f"cross-{arch}"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(nice + ["cmake", "--build", build, "-j", str(jobs), "--target", "hubd_board"], check=True,
+    types = hub_types()
+    targets = ["hubd_board"] + [f"hubd_board_{t}" for t in types]
+    subprocess.run(nice + ["cmake", "--build", build, "-j", str(jobs), "--target"] + targets, check=True,
                    stdout=subprocess.DEVNULL)
-    program = os.path.join(build, "firmware", "hubd", "board", "hubd")
-    with tempfile.TemporaryDirectory() as scratch:
-        stripped = os.path.join(scratch, "hubd")
-        subprocess.run([f"{triplet}-strip", "-o", stripped, program], check=True)
-        size = os.path.getsize(stripped)
-        found = sections(triplet, stripped)
-    groups = {name: sum(found.get(s, 0) for s in members) for name, members in GROUPS.items()}
-    groups["other"] = sum(found.values()) - sum(groups.values())
+    board_dir = os.path.join(build, "firmware", "hubd", "board")
+    programs = []
+    for name, program in [("every hub type", os.path.join(board_dir, "hubd"))] + \
+            [(t, os.path.join(board_dir, t, "hubd")) for t in types]:
+        size, groups = stripped_size(triplet, program)
+        programs.append({"program": name, "stripped_bytes": size, "groups": groups})
     return {
         "arch": arch,
         "prepared": True,
-        "stripped_bytes": size,
-        "groups": groups,
+        "programs": programs,
         "flags": " ".join(filter(None, (cache_value(build, "CMAKE_CXX_FLAGS"),
                                         cache_value(build, "CMAKE_CXX_FLAGS_RELWITHDEBINFO")))),
         "board_lto": cache_value(build, "HUBRT_BOARD_LTO").upper() in ("ON", "TRUE", "1"),
@@ -98,8 +120,11 @@ def main():
     with open(args.out, "w") as f:
         json.dump({"targets": results}, f, indent=2)
     for r in results:
-        figure = f"{r['stripped_bytes']} bytes" if "stripped_bytes" in r else r.get("error", "not prepared")
-        print(f"  {r['arch']}: {figure}")
+        if "programs" not in r:
+            print(f"  {r['arch']}: {r.get('error', 'not prepared')}")
+            continue
+        for p in r["programs"]:
+            print(f"  {r['arch']} {p['program']}: {p['stripped_bytes']} bytes")
 
 
 if __name__ == "__main__":

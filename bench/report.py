@@ -40,7 +40,10 @@ def machine(results):
         with open(path) as f:
             for line in f:
                 key, _, value = line.partition(": ")
-                info[key.strip()] = value.strip()
+                if key.strip() == "rerun":
+                    info.setdefault("rerun", []).append(value.strip())
+                else:
+                    info[key.strip()] = value.strip()
     return info
 
 
@@ -425,7 +428,10 @@ def main():
         f"{info.get('kernel', '?')}, {info.get('build', '?')} build. Load average at start "
         f"{info.get('load_start', '?')}, at end {info.get('load_end', '?')} (this machine is shared: other "
         "builds and tests ran during the measurements, which shows in every tail figure)."
-        + (" **Quick run: figures too short to rely on.**" if info.get("quick") == "1" else ""),
+        + (" **Quick run: figures too short to rely on.**" if info.get("quick") == "1" else "")
+        # A step run again on its own after a change it measures (`rerun:` lines in machine.txt,
+        # written by hand with the command): its figures and its baseline come from that later run.
+        + "".join(f" Re-run on its own: {line}." for line in info.get("rerun", [])),
         "",
         "Each figure is measured side by side with its baseline in the same run (raw Cyclone DDS on the C API "
         "with the same types and QoS, or a bare `clock_nanosleep` loop) and given as a ratio.",

@@ -4,8 +4,9 @@ and the board build's RSS row (hubrt_bench_heartbeat --board-build)."""
 # Where hubd's resident set goes beyond the bare writer's, by /proc/<pid>/smaps of both side by side
 # (x86, 100 Hz, Debian 12's libraries; docs: bench/README.md, "Memory").
 WHERE_IT_GOES = (
-    "The rest, by /proc/<pid>/smaps of both side by side: the hubd program's own code, about 1.6 MB resident "
-    "in the board build and 2.2 MB in the development build (which also holds the simulators): file pages of "
+    "The rest, by /proc/<pid>/smaps of both side by side: the hubd program's own code, about 1.4 MB resident "
+    "in the board build (the Dock ECU's board program; 1.6 MB with every hub type) and 2.2 MB in the "
+    "development build (which also holds the simulators): file pages of "
     "the program that the kernel maps around every fault, most of them start-up code; spdlog (0.5 MB) and "
     "yaml-cpp (0.3 MB), which the bare writer does not load; a heap 0.6 MB larger (board build: Cyclone's two "
     "receive buffer pools, bounded at 192 KiB each and filled as datagrams arrive, the nodes' message storage, "

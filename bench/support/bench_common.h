@@ -25,10 +25,11 @@ Expected<test_support::TestDomain> join_private_domain();
 // once (the benchmarks wait for its first State on the wire). Errors: spawning failed.
 Expected<test_support::ChildProcess> start_hubd(const std::vector<std::string>& args,
                                                 const test_support::Environment& env = {});
-// The board build of hubd (board/hubd, what the packages install: no fake backend, no simulators)
-// with `args` after `--board rpi4-dock-ecu --log-level warn`: the Dock ECU on the Linux backend. On
-// a machine without the Pi's GPIO chip its devices are missing (supervised, opened again with
-// back-off; its outputs drive nothing) and it publishes its State as on a Pi. Errors: spawning.
+// The Dock ECU's board program of hubd (board/dock_ecu/hubd, what its package installs: the Dock
+// ECU's hub type alone, no fake backend, no simulators) with `args` after `--board rpi4-dock-ecu --log-level
+// warn`: the Dock ECU on the Linux backend. On a machine without the Pi's GPIO chip its devices are missing
+// (supervised, opened again with back-off; its outputs drive nothing) and it publishes its State as on a Pi.
+// Errors: spawning.
 Expected<test_support::ChildProcess> start_board_hubd(const std::vector<std::string>& args);
 // hubrt_bench_raw_peer with `args`; waits for its ready line.
 Expected<test_support::ChildProcess> start_raw_peer(const std::vector<std::string>& args);

@@ -119,12 +119,17 @@ endforeach()
 
 # --- contents: everything in component hubrt-board, paths relative to / ------------------------
 set(_pkg_component COMPONENT hubrt-board EXCLUDE_FROM_ALL)
-# The board build of hubd (firmware/hubd: no fake backend, no simulators), installed as hubd.
-install(TARGETS hubd_board hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
+# The board build of hubd with the board's hub type alone (firmware/hubd: hubd_board_<hub>; no fake
+# backend, no simulators, no other hub type), installed as hubd.
+if(NOT TARGET hubd_board_${HUBRT_PKG_HUB})
+  message(FATAL_ERROR "board ${HUBRT_PKG_BOARD} runs hub '${HUBRT_PKG_HUB}': no board program "
+                      "hubd_board_${HUBRT_PKG_HUB} (a board package carries one hub type, one of hubs/)")
+endif()
+install(TARGETS hubd_board_${HUBRT_PKG_HUB} hubctl RUNTIME DESTINATION usr/bin ${_pkg_component})
 # The HTTP client module (hal/linux/http: cpp-httplib and, through Debian's build of it, OpenSSL),
 # only for a board with REST devices; hubd loads it from ../lib/hubrt next to /usr/bin.
 set(_pkg_binaries usr/bin/hubd usr/bin/hubctl)
-set(_pkg_programs hubd_board hubctl)
+set(_pkg_programs hubd_board_${HUBRT_PKG_HUB} hubctl)
 if(_pkg_http)
   install(TARGETS hubrt_http_module LIBRARY DESTINATION usr/lib/hubrt ${_pkg_component})
   list(APPEND _pkg_binaries usr/lib/hubrt/hubrt-http.so)
@@ -202,8 +207,9 @@ file(WRITE "${CPACK_PROJECT_CONFIG_FILE}"
      "set(HUBRT_PKG_BINARIES ${_pkg_binaries})\n")
 include(CPack)
 
-# cmake --build <dir> --target hubrt-deb: builds hubd (its board build, hubd_board), hubctl and,
-# for a board with REST devices, the HTTP client module (nothing else) and packs them.
+# cmake --build <dir> --target hubrt-deb: builds hubd (the board program of its hub type,
+# hubd_board_<hub>), hubctl and, for a board with REST devices, the HTTP client module (nothing
+# else) and packs them.
 add_custom_target(hubrt-deb
   COMMAND "${CMAKE_CPACK_COMMAND}" --config "${CMAKE_BINARY_DIR}/CPackConfig.cmake"
   DEPENDS ${_pkg_programs}

@@ -29,7 +29,9 @@ class MirHttpTest : public ::testing::Test {
     platform_.emplace(config, clock_.now().mono);
     platform_->add_position("home", 0, 0, 0);
     MirSimServerOptions options;
-    options.slow_delay = milliseconds(1500);
+    // Far beyond the client's timeout below, so that a client thread delayed by load still finds
+    // no answer when it gives up.
+    options.slow_delay = milliseconds(4000);
     auto server = start_mir_sim_server(*platform_, clock_, options);
     ASSERT_TRUE(server) << server.error().message;
     server_ = std::move(*server);
@@ -43,8 +45,10 @@ class MirHttpTest : public ::testing::Test {
     config.port = server_->port();
     config.base_path = "/api/v2.0.0";
     config.authorization = std::move(authorization);
-    config.read_timeout = milliseconds(300);
-    config.connect_timeout = milliseconds(300);
+    // Each healthy answer must come within this: with 300 ms, SlowAndMissingAnswersTimeOut failed
+    // once in the ASan build on a loaded 2-core machine.
+    config.read_timeout = milliseconds(1000);
+    config.connect_timeout = milliseconds(1000);
     config.max_response_bytes = max_bytes;
     auto client = httplib_client::open_httplib(config);
     EXPECT_TRUE(client) << client.error().message;
