@@ -326,6 +326,9 @@ def picture(results, path):
     try:
         import matplotlib
         matplotlib.use("Agg")
+        # The same figures make the same file: no random element ids, no date (a re-run of the
+        # report alone then changes nothing in git).
+        matplotlib.rcParams["svg.hashsalt"] = "hubrt"
         import matplotlib.pyplot as plt
     except ImportError:
         print("report.py: python3-matplotlib missing (toolchain/install-deps --bench): no picture", file=sys.stderr)
@@ -360,7 +363,7 @@ def picture(results, path):
         ax.set_ylabel("share of periods exceeding it")
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, format="svg")
+    fig.savefig(path, format="svg", metadata={"Date": None})
     return True
 
 
