@@ -195,23 +195,31 @@ TEST(CommandFlood, TwoPlannersFlippingTheCommandStayWithinTheBudgetAndTheHeartbe
   ASSERT_FALSE(echoes.empty());
   EXPECT_EQ(echoes.rbegin()->second, "inhibit");
 
-  // /diagnostics counts the held-back States, for the node and the hub (published at 1 Hz).
+  // /diagnostics counts the held-back States, for the node and the hub (published at 1 Hz). The
+  // counts are cumulative, and the reader still holds arrays published during the flood (oldest
+  // first; once, under load, one of 67 was taken for the whole flood's): read on until two arrays
+  // in a row give the same count, which is then the whole flood's.
   std::optional<std::string> node_deferred;
   std::optional<std::string> hub_deferred;
   dds::Sample<DiagnosticArray> diag;
-  const auto diag_end = std::chrono::steady_clock::now() + seconds(5);
-  while (std::chrono::steady_clock::now() < diag_end && !(node_deferred && hub_deferred)) {
+  bool settled = false;
+  const auto diag_end = std::chrono::steady_clock::now() + kPatience;
+  while (std::chrono::steady_clock::now() < diag_end && !settled) {
     const Result<bool> taken = diagnostics->take_next(diag);
     if (!taken.is_ok() || !taken.value()) {
       std::this_thread::sleep_for(milliseconds(10));
       continue;
     }
-    node_deferred = diagnostic_value(diag.get(), "tool_ecu: tool", "states_deferred");
-    hub_deferred = diagnostic_value(diag.get(), "tool_ecu: cycle", "states_deferred");
-    if (node_deferred && std::stoull(*node_deferred) == 0) node_deferred.reset();  // an older array
+    const auto node = diagnostic_value(diag.get(), "tool_ecu: tool", "states_deferred");
+    const auto hub_count = diagnostic_value(diag.get(), "tool_ecu: cycle", "states_deferred");
+    if (!node || !hub_count || std::stoull(*node) == 0) continue;  // from before the flood
+    settled = node_deferred && *node_deferred == *node;
+    node_deferred = node;
+    hub_deferred = hub_count;
   }
   ASSERT_TRUE(node_deferred) << "no /diagnostics with the tool's states_deferred";
   ASSERT_TRUE(hub_deferred);
+  EXPECT_TRUE(settled) << "the tool's states_deferred still grew after the flood: " << *node_deferred;
   EXPECT_GT(std::stoull(*node_deferred), 100U);
   EXPECT_GE(std::stoull(*hub_deferred), std::stoull(*node_deferred));
   const auto interval = diagnostic_value(diag.get(), "tool_ecu: cycle", "immediate_state_interval_ms");
