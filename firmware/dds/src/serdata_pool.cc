@@ -55,7 +55,9 @@ SerdataPool::Block* block_of(const ddsi_serdata* d) noexcept {
 }  // namespace
 
 SerdataPool* SerdataPool::create(const ddsi_sertype* sertype, dds_entity_t writer) {
-  auto* pool = new SerdataPool(sertype, writer);
+  // The pool and its blocks live by counts Cyclone's C API keeps (a serdata's refcount, the
+  // writer's release), so they are made and deleted by hand, never owned by a C++ object.
+  auto* pool = new SerdataPool(sertype, writer);  // NOLINT(cppcoreguidelines-owning-memory)
   pool->register_instance();
   return pool;
 }
@@ -90,7 +92,7 @@ SerdataPool::~SerdataPool() {
     Block* block = free_;
     free_ = block->next;
     ddsrt_free(block->buffer);
-    delete block;
+    delete block;  // NOLINT(cppcoreguidelines-owning-memory): see create()
   }
   ddsi_sertype_unref(&sertype_->c);
 }
@@ -103,7 +105,7 @@ void SerdataPool::release() noexcept {
     released_ = true;
     last = outstanding_ == 0;
   }
-  if (last) delete this;
+  if (last) delete this;  // NOLINT(cppcoreguidelines-owning-memory): see create()
 }
 
 std::size_t SerdataPool::blocks() const noexcept {
@@ -117,11 +119,11 @@ SerdataPool::Block* SerdataPool::take_free_block() noexcept {
   if (block != nullptr) {
     free_ = block->next;
   } else {
-    block = new (std::nothrow) Block{};
+    block = new (std::nothrow) Block{};  // NOLINT(cppcoreguidelines-owning-memory): see create()
     if (block == nullptr) return nullptr;
     block->buffer = static_cast<unsigned char*>(ddsrt_malloc(kInitialCapacity));
     if (block->buffer == nullptr) {
-      delete block;
+      delete block;  // NOLINT(cppcoreguidelines-owning-memory): see create()
       return nullptr;
     }
     block->capacity = kInitialCapacity;
@@ -141,7 +143,7 @@ void SerdataPool::give_back(Block* block) noexcept {
     --outstanding_;
     last = released_ && outstanding_ == 0;
   }
-  if (last) delete this;
+  if (last) delete this;  // NOLINT(cppcoreguidelines-owning-memory): see create()
 }
 
 ddsi_serdata* SerdataPool::serialize_key() noexcept {

@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
   // allocates): Cyclone's threads allocate a little each and every arena keeps its own free pages
   // resident. The cycle allocates nothing, so nothing real-time waits on the arena's lock; set
   // before any thread exists (mallopt(3), M_ARENA_MAX).
-  mallopt(M_ARENA_MAX, 1);
+  mallopt(M_ARENA_MAX, 1);  // NOLINT(concurrency-mt-unsafe): no other thread exists yet
   hubrt::hubd::Options options;
   CLI::App app{"hubd — runs one hub: reads its devices, runs its nodes at a fixed rate, talks DDS"};
   app.add_option("--board", options.board, "Board name (file in the boards folder) or path to a board file")

@@ -11,8 +11,8 @@
 namespace hubrt::hubd {
 namespace {
 
-// NOLINTNEXTLINE(concurrency-mt-unsafe): start-up only, before any thread exists.
 std::string_view environment(const char* name) noexcept {
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): start-up only, before any thread exists.
   const char* value = std::getenv(name);
   return value != nullptr ? std::string_view(value) : std::string_view();
 }

@@ -87,7 +87,7 @@ struct HttpConfig {
   std::string authorization;  // the Authorization header's value, e.g. "Basic ..."; empty: none
   Duration connect_timeout = std::chrono::milliseconds(500);
   Duration read_timeout = std::chrono::milliseconds(1000);  // for each read and write on the socket
-  std::size_t max_response_bytes = 64 * 1024;
+  std::size_t max_response_bytes = std::size_t{64} * 1024;
 };
 
 // One request at a time; every call is bounded by the connect timeout plus the read timeout for
