@@ -58,8 +58,14 @@ def size_section(report, size):
     largest = max(shipped, key=lambda p: p["stripped_bytes"])
     smallest = min(shipped, key=lambda p: p["stripped_bytes"])
     every = next((p for p in arm64["programs"] if p["program"] == "every hub type"), None)
+    others = []
+    for target in size["targets"]:
+        if target["arch"] == "arm64" or "programs" not in target:
+            continue
+        sizes = [p["stripped_bytes"] for p in target["programs"] if p["program"] != "every hub type"]
+        others.append(f"{target['arch']} {_mb(min(sizes))} to {_mb(max(sizes))}")
     report.aim(aim, f"{_mb(smallest['stripped_bytes'])} ({smallest['program']}) to "
-               f"{_mb(largest['stripped_bytes'])} ({largest['program']})",
+               f"{_mb(largest['stripped_bytes'])} ({largest['program']})" + "".join(f"; {o}" for o in others),
                largest["stripped_bytes"] <= AIM_BYTES,
                "each board package installs the board program of its hub type, linked with that hub type "
                "alone: without the other hub types' logic, messages and device protocols" +
