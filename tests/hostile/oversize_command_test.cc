@@ -27,6 +27,7 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/assembly/diagnostics_stage.h"
+#include "hubrt/base/sanitizers.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
@@ -65,7 +66,7 @@ constexpr double kMaxGapS = 2 * kPeriodS + 0.3;
 // default 113; before the bound +155 MB (release, 16 -> 172 MB; ASan +69 MB). Only an ASan hubd through the
 // full 300 moves more, +1.9 MB (ASan's own allocator: its size-class regions grow with the
 // receive threads' malloc/free traffic where glibc reuses the same memory): 4 MB there.
-#if defined(__SANITIZE_ADDRESS__) && defined(HUBRT_OVERSIZE_FULL)
+#if defined(HUBRT_SANITIZE_ADDRESS) && defined(HUBRT_OVERSIZE_FULL)
 constexpr long kMaxRssGrowthKb = 4096;
 #else
 constexpr long kMaxRssGrowthKb = 1024;

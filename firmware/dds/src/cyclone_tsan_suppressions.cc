@@ -23,7 +23,9 @@
 //
 // Compiled into each executable that uses DDS or cpp-httplib (TSan looks the function up in the
 // main program).
-#if defined(__SANITIZE_THREAD__)
+#include "hubrt/base/sanitizers.h"
+
+#if defined(HUBRT_SANITIZE_THREAD)
 // NOLINTNEXTLINE(bugprone-reserved-identifier): the name TSan looks for.
 extern "C" const char* __tsan_default_suppressions() {
   // Substring matches on the top frame's function name (anchors do not work for race_top).

@@ -10,6 +10,8 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 
+#include "hubrt/base/sanitizers.h"
+
 namespace hubrt::hubd {
 namespace {
 
@@ -42,7 +44,7 @@ Expected<void> enter_realtime(int priority) {
                                   "the unit sets LimitRTPRIO=)",
                                   priority, std::strerror(error), priority, limit_text(RLIMIT_RTPRIO)));
   }
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(HUBRT_SANITIZE_ADDRESS) || defined(HUBRT_SANITIZE_THREAD)
   // The sanitizers map terabytes of shadow memory: locking it all would exhaust the machine.
   sched_setscheduler(0, old_policy, &old_param);
   return make_error(ErrorCode::kFailedPrecondition,

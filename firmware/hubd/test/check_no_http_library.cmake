@@ -3,22 +3,28 @@
 # hub without one does not map cpp-httplib nor run the OpenSSL initialisation Debian's build of it
 # does at load time (~2 MB of resident memory in every hubd, docs/benchmarks.md). The same check
 # on the module must fail (WILL_FAIL), which shows the pattern still matches the library's name.
+# The program's own shared libraries (a HUBRT_SHARED_LIBS build) are looked at with it.
 #   cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake
 if(NOT BINARY OR NOT READELF)
   message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake")
 endif()
-execute_process(COMMAND "${READELF}" --dynamic "${BINARY}"
-                OUTPUT_VARIABLE dynamic ERROR_VARIABLE errors RESULT_VARIABLE status)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "${READELF} --dynamic ${BINARY} failed: ${errors}")
-endif()
-string(REGEX MATCHALL "\\(NEEDED\\)[^\n]*\\[[^]\n]*\\]" needed "${dynamic}")
-if(NOT needed)
-  message(FATAL_ERROR "${BINARY}: no NEEDED entry found (not a dynamically linked program?)")
-endif()
-foreach(entry IN LISTS needed)
-  if(entry MATCHES "libcpp-httplib")
-    message(FATAL_ERROR "${BINARY} needs the HTTP client library: ${entry}")
+include(${CMAKE_CURRENT_LIST_DIR}/program_files.cmake)
+hubrt_program_files("${BINARY}" "${READELF}" files)
+foreach(file IN LISTS files)
+  execute_process(COMMAND "${READELF}" --dynamic "${file}"
+                  OUTPUT_VARIABLE dynamic ERROR_VARIABLE errors RESULT_VARIABLE status)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${READELF} --dynamic ${file} failed: ${errors}")
   endif()
+  string(REGEX MATCHALL "\\(NEEDED\\)[^\n]*\\[[^]\n]*\\]" needed "${dynamic}")
+  if(NOT needed)
+    message(FATAL_ERROR "${file}: no NEEDED entry found (not a dynamically linked program?)")
+  endif()
+  foreach(entry IN LISTS needed)
+    if(entry MATCHES "libcpp-httplib")
+      message(FATAL_ERROR "${file} needs the HTTP client library: ${entry}")
+    endif()
+  endforeach()
 endforeach()
-message(STATUS "${BINARY}: no NEEDED entry for libcpp-httplib")
+list(LENGTH files count)
+message(STATUS "${BINARY} (${count} files with its own libraries): no NEEDED entry for libcpp-httplib")

@@ -2,16 +2,23 @@
 # namespace hubrt::hal::fake (device simulators, Modbus servers, virtual CAN) or hubrt::sim (the sim
 # bridge, the station model). The board build of hubd must link none of them (firmware/hubd,
 # assembly/simulation.h); the same check on the development hubd must fail (WILL_FAIL), which shows
-# the patterns still match what the simulators are called.
-#   cmake -DBINARY=<program> -DNM=<nm> -P check_no_simulators.cmake
-if(NOT BINARY OR NOT NM)
-  message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DNM=<nm> -P check_no_simulators.cmake")
+# the patterns still match what the simulators are called. The program's own shared libraries
+# (a HUBRT_SHARED_LIBS build) are looked at with it.
+#   cmake -DBINARY=<program> -DNM=<nm> -DREADELF=<readelf> -P check_no_simulators.cmake
+if(NOT BINARY OR NOT NM OR NOT READELF)
+  message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DNM=<nm> -DREADELF=<readelf> -P check_no_simulators.cmake")
 endif()
-execute_process(COMMAND "${NM}" --demangle --defined-only "${BINARY}"
-                OUTPUT_VARIABLE symbols ERROR_VARIABLE errors RESULT_VARIABLE status)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "${NM} ${BINARY} failed: ${errors}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/program_files.cmake)
+hubrt_program_files("${BINARY}" "${READELF}" files)
+set(symbols "")
+foreach(file IN LISTS files)
+  execute_process(COMMAND "${NM}" --demangle --defined-only "${file}"
+                  OUTPUT_VARIABLE file_symbols ERROR_VARIABLE errors RESULT_VARIABLE status)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${NM} ${file} failed: ${errors}")
+  endif()
+  string(APPEND symbols "${file}:\n${file_symbols}")
+endforeach()
 # string(FIND), not a regular expression over the whole listing: a sanitizer build's hubd has
 # ~56,000 symbols, and REGEX MATCHALL with a line pattern took over a minute on a loaded machine.
 foreach(namespace "hubrt::hal::fake::" "hubrt::sim::")
@@ -25,4 +32,5 @@ foreach(namespace "hubrt::hal::fake::" "hubrt::sim::")
     message(FATAL_ERROR "${BINARY} links code of the fake backend or the simulators (${namespace}), e.g. near: ${around}")
   endif()
 endforeach()
-message(STATUS "${BINARY}: no symbol of hubrt::hal::fake or hubrt::sim")
+list(LENGTH files count)
+message(STATUS "${BINARY} (${count} files with its own libraries): no symbol of hubrt::hal::fake or hubrt::sim")

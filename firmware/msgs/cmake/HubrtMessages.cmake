@@ -136,7 +136,7 @@ function(hubrt_add_messages)
 
   # Generated code gets no hubrt warning flags, and its headers are SYSTEM headers for users: its
   # warnings (and clang-tidy's view of idlc's names, e.g. the reserved "dds__") are not ours to fix.
-  add_library(${A_TARGET} STATIC ${sources})
+  add_library(${A_TARGET} ${HUBRT_LIBRARY_KIND} ${sources})
   target_include_directories(${A_TARGET} SYSTEM PUBLIC "${out}")
   # hubrt_dds: <stem>_typed.h registers the topic types (hubrt/dds/topic_type.h).
   target_link_libraries(${A_TARGET} PUBLIC CycloneDDS::ddsc hubrt_msgs_reflect hubrt_dds ${A_DEPENDS})
@@ -154,7 +154,7 @@ endfunction()
 # targets added later (hubs/*) are included without naming them here.
 function(hubrt_messages_add_registry target)
   set(file "${CMAKE_CURRENT_BINARY_DIR}/${target}.cc")
-  add_library(${target} STATIC "${file}")
+  add_library(${target} ${HUBRT_LIBRARY_KIND} "${file}")
   target_link_libraries(${target} PUBLIC hubrt_msgs_reflect)
   if(COMMAND hubrt_target_defaults)
     hubrt_target_defaults(${target})

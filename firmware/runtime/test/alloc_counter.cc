@@ -10,13 +10,10 @@
 #include <sys/prctl.h>
 #include <sys/syscall.h>
 
-// GCC defines __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__; clang answers __has_feature.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#include "hubrt/base/sanitizers.h"
+
+#if defined(HUBRT_SANITIZE_ADDRESS) || defined(HUBRT_SANITIZE_THREAD)
 #define HUBRT_ALLOC_COUNTER_HOOKS 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define HUBRT_ALLOC_COUNTER_HOOKS 1
-#endif
 #endif
 
 namespace {
