@@ -42,6 +42,7 @@ using dock_ecu::DockCommand;
 using dock_ecu::DockState;
 using integration::HubProcess;
 using integration::HubProcessOptions;
+using std::chrono::microseconds;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using std::chrono::steady_clock;
@@ -270,6 +271,11 @@ TEST_F(HubdDockKernelTest, DebounceHidesPulsesShorterThanItsWindow) {
   std::int64_t last_stamp = stamp_ns(state_.get());
   const auto budget = steady_clock::now() + seconds(60);
   for (; pulses < kMaxPulses && seen < kWantedSeen && steady_clock::now() < budget; ++pulses) {
+    // Each pulse starts right after a State arrived, so on a fast guest it starts just after a
+    // cycle and ends long before the next: no cycle falls inside it, ever (a run with 197 judged
+    // pulses, 0 looked at). A delay walking through the 10 ms period in steps of 3.7 ms puts the
+    // pulses at every phase of the cycle instead.
+    std::this_thread::sleep_for(microseconds((pulses * 3700) % 10000));
     PulseOutcome pulse;
     const std::int64_t rise = wall_ns();
     pull(chip_, kSmartTool, Pull::kUp);
