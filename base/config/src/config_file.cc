@@ -1,5 +1,6 @@
 #include "hubrt/config/config_file.h"
 
+#include <array>
 #include <filesystem>
 #include <system_error>
 
@@ -48,6 +49,18 @@ Expected<void> require_regular_file(const std::string& path) {
     default:
       return problem(ErrorCode::kInvalidArgument, path, "is not a regular file (a FIFO, socket or device)");
   }
+}
+
+std::optional<std::string> read_at_most(std::istream& in, std::size_t max_bytes) {
+  std::string text;
+  std::array<char, 4096> chunk{};
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto n = static_cast<std::size_t>(in.gcount());
+    if (n > max_bytes - text.size()) return std::nullopt;
+    text.append(chunk.data(), n);
+  }
+  return text;
 }
 
 }  // namespace hubrt::config

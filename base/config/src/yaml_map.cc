@@ -43,7 +43,7 @@ std::string join_choices(std::initializer_list<std::string_view> choices) {
 constexpr std::size_t kMaxNodes = 100'000;
 // Board, hub, station and scenario files are a few kB; a file far larger is not one of them
 // (or a link to a device that never ends), and reading it whole would cost memory for nothing.
-constexpr std::streamsize kMaxFileBytes = 1 << 20;
+constexpr std::size_t kMaxFileBytes = std::size_t{1} << 20;
 
 // Every mapping key in the document is a scalar. The readers take keys as names
 // (Node::as<std::string>(), which throws YAML::TypedBadConversion for a mapping or list used as a
@@ -111,14 +111,12 @@ Expected<YamlMap> YamlMap::load_file(const std::string& path) {
     return make_error(err == ENOENT ? ErrorCode::kNotFound : ErrorCode::kIo,
                       fmt::format("{}: cannot open: {}", path, std::generic_category().message(err)));
   }
-  std::string text(static_cast<std::size_t>(kMaxFileBytes) + 1, '\0');
-  in.read(text.data(), kMaxFileBytes + 1);
-  if (in.gcount() > kMaxFileBytes) {
+  const std::optional<std::string> text = read_at_most(in, kMaxFileBytes);
+  if (!text) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: larger than {} bytes: not a configuration file", path, kMaxFileBytes));
   }
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  return load_string(text, path);
+  return load_string(*text, path);
 }
 
 bool YamlMap::has(std::string_view key) const {

@@ -4,10 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "hubrt/config/config_file.h"
 
 namespace hubrt::config {
 namespace {
@@ -156,6 +160,25 @@ TEST_F(YamlMapFiles, AFileLargerThanAnyConfigurationIsRefusedUnread) {
   ASSERT_FALSE(loaded) << "a 1.1 MiB file was read as a configuration";
   EXPECT_EQ(loaded.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(loaded.error().message, path.string() + ": larger than 1048576 bytes: not a configuration file");
+}
+
+// The bound is exact, whatever the chunks the text is read in.
+TEST(ReadAtMost, ReadsUpToTheBoundAndRefusesOneByteMore) {
+  for (const std::size_t size : {std::size_t{0}, std::size_t{1}, std::size_t{4095}, std::size_t{4096},
+                                 std::size_t{4097}, std::size_t{10000}}) {
+    std::string content(size, 'a');
+    for (std::size_t i = 0; i < size; ++i) content[i] = static_cast<char>('a' + i % 26);
+    std::istringstream exact(content);
+    const std::optional<std::string> read = read_at_most(exact, size);
+    ASSERT_TRUE(read) << size;
+    EXPECT_EQ(*read, content);
+    std::istringstream roomy(content);
+    EXPECT_EQ(read_at_most(roomy, size + 4096), content);
+    if (size > 0) {
+      std::istringstream over(content);
+      EXPECT_FALSE(read_at_most(over, size - 1)) << size;
+    }
+  }
 }
 
 TEST_F(YamlMapFiles, AFileWithInvalidUtf8IsRefused) {

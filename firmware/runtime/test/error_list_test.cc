@@ -1,5 +1,6 @@
 #include "hubrt/runtime/error_list.h"
 
+#include <cstdint>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -85,6 +86,135 @@ TEST(ErrorList, LongMessagesAreCutNotDropped) {
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_EQ(errors.at(0).size(), ErrorList::kMaxLength);
   EXPECT_EQ(errors.at(0).substr(ErrorList::kMaxLength - 3), "...");
+}
+
+// Rebuilt every cycle, an entry is formatted again only when its format string or an argument
+// changed (issue 16: nothing formatted per cycle that did not change); what it says is always what
+// formatting it now would say.
+TEST(ErrorList, AMessageIsFormattedAgainOnlyWhenWhatItIsMadeOfChanged) {
+  ErrorList errors;
+  std::string device_error = "chip gpiochip0 not found";
+  const auto cycle = [&](int failures, double seconds) {
+    errors.clear();
+    errors.add("sensor {} not available: {}", "dock.slot.smart_tool", device_error);
+    errors.add("sensor failed {} time(s), silent for {:.1f} s", failures, seconds);
+  };
+  cycle(1, 0.5);
+  EXPECT_EQ(errors.formatted(), 2u);
+  cycle(1, 0.5);
+  cycle(1, 0.5);
+  EXPECT_EQ(errors.formatted(), 2u);
+  EXPECT_EQ(errors.at(0), "sensor dock.slot.smart_tool not available: chip gpiochip0 not found");
+  EXPECT_EQ(errors.at(1), "sensor failed 1 time(s), silent for 0.5 s");
+
+  // A string argument changed in place (same buffer, same length): seen.
+  device_error[5] = 'X';
+  cycle(1, 0.5);
+  EXPECT_EQ(errors.formatted(), 3u);
+  EXPECT_EQ(errors.at(0), "sensor dock.slot.smart_tool not available: chip Xpiochip0 not found");
+  // A number changed: only that entry.
+  cycle(2, 0.5);
+  EXPECT_EQ(errors.formatted(), 4u);
+  EXPECT_EQ(errors.at(1), "sensor failed 2 time(s), silent for 0.5 s");
+  cycle(2, 0.6);
+  EXPECT_EQ(errors.formatted(), 5u);
+  EXPECT_EQ(errors.at(1), "sensor failed 2 time(s), silent for 0.6 s");
+
+  // Another message in the same place: formatted, even with the same arguments.
+  errors.clear();
+  errors.add("sensor {} failed: {}", "dock.slot.smart_tool", device_error);
+  EXPECT_EQ(errors.formatted(), 6u);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors.at(0), "sensor dock.slot.smart_tool failed: chip Xpiochip0 not found");
+}
+
+TEST(ErrorList, AnArgumentOfAnotherTypeWithTheSameBytesIsFormattedAgain) {
+  ErrorList errors;
+  const auto one = [&](auto value) {
+    errors.clear();
+    errors.add("value {}", value);
+  };
+  one(1);
+  one(1u);
+  one(std::int64_t{1});
+  one(true);
+  EXPECT_EQ(errors.formatted(), 4u);
+  EXPECT_EQ(errors.at(0), "value true");
+  one('a');
+  one("a");
+  EXPECT_EQ(errors.formatted(), 6u);
+  EXPECT_EQ(errors.at(0), "value a");
+  one(-1);
+  one(0xffffffffu);
+  EXPECT_EQ(errors.formatted(), 8u);
+  EXPECT_EQ(errors.at(0), "value 4294967295");
+  one(1.0F);
+  one(0x3f800000);  // 1.0F's bytes
+  EXPECT_EQ(errors.formatted(), 10u);
+  EXPECT_EQ(errors.at(0), "value 1065353216");
+}
+
+struct Custom {
+  int value = 0;
+};
+
+}  // namespace
+}  // namespace hubrt::runtime
+
+template <>
+struct fmt::formatter<hubrt::runtime::Custom> : fmt::formatter<int> {
+  auto format(const hubrt::runtime::Custom& custom, format_context& context) const {
+    return fmt::formatter<int>::format(custom.value, context);
+  }
+};
+
+namespace hubrt::runtime {
+namespace {
+
+// What FormatKey cannot copy — a type with a formatter of its own, arguments larger than its
+// room — is formatted every cycle, as without a key; the text is right either way.
+TEST(ErrorList, WhatHasNoKeyIsFormattedEveryTime) {
+  ErrorList errors;
+  Custom custom{7};
+  const std::string long_text(ErrorList::kMaxKeyBytes, 'x');
+  for (int i = 0; i < 3; ++i) {
+    errors.clear();
+    errors.add("custom {}", custom);
+    errors.add("long {}", long_text);
+  }
+  EXPECT_EQ(errors.formatted(), 6u);
+  EXPECT_EQ(errors.at(0), "custom 7");
+  custom.value = 8;
+  errors.clear();
+  errors.add("custom {}", custom);
+  EXPECT_EQ(errors.at(0), "custom 8");
+}
+
+// The overflow entry replaces the last message: the next cycle formats that message again.
+TEST(ErrorList, AfterAnOverflowTheLastEntryIsRightAgain) {
+  ErrorList errors;
+  const auto cycle = [&](std::size_t n) {
+    errors.clear();
+    for (std::size_t i = 0; i < n; ++i) errors.add("error {}", i);
+  };
+  cycle(ErrorList::kMaxEntries + 2);
+  EXPECT_EQ(errors.at(ErrorList::kMaxEntries - 1), "... and 3 more errors");
+  cycle(ErrorList::kMaxEntries);
+  EXPECT_EQ(errors.at(ErrorList::kMaxEntries - 1), "error 15");
+  cycle(ErrorList::kMaxEntries + 1);
+  EXPECT_EQ(errors.at(ErrorList::kMaxEntries - 1), "... and 2 more errors");
+  EXPECT_EQ(errors.at(0), "error 0");
+}
+
+// A message quoting bad bytes is escaped when it is formatted, and stays so while unchanged.
+TEST(ErrorList, AnUnchangedMessageKeepsItsEscapes) {
+  ErrorList errors;
+  for (int i = 0; i < 3; ++i) {
+    errors.clear();
+    errors.add("device says '{}'", "a\xff");
+  }
+  EXPECT_EQ(errors.formatted(), 1u);
+  EXPECT_EQ(errors.at(0), "device says 'a\\xFF'");
 }
 
 }  // namespace

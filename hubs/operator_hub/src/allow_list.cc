@@ -2,12 +2,14 @@
 
 #include <cerrno>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
 #include <fmt/format.h>
 
 #include "hubrt/base/utf8.h"
+#include "hubrt/config/config_file.h"
 
 namespace hubrt::operator_hub {
 namespace {
@@ -96,14 +98,13 @@ Expected<AllowList> AllowList::load(const std::string& path) {
                       fmt::format("{}: cannot read the operator allow-list: {}", path,
                                   std::generic_category().message(err)));
   }
-  std::string text(kMaxFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxFileBytes) {
+  // Read as it comes rather than into a buffer of kMaxFileBytes made first (config_file.h).
+  const std::optional<std::string> text = config::read_at_most(in, kMaxFileBytes);
+  if (!text) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: larger than {} bytes: not an allow-list", path, kMaxFileBytes));
   }
-  return parse(text, path);
+  return parse(*text, path);
 }
 
 const AllowedOperator* AllowList::find(const BadgeDigest& digest) const noexcept {

@@ -34,6 +34,13 @@ class DdsCommandSource final : public runtime::CommandSource<Command> {
       : reader_(std::move(reader)), arrived_(std::move(arrived)) {}
 
   Result<const Command*> next() noexcept override {
+    // Nothing arrived since the last take found the reader empty: no take (Cyclone's dds_take
+    // locks the reader and its history cache to find nothing, ~650 instructions every periodic
+    // cycle). The listener runs after the sample is in the reader (Cyclone 0.10.2
+    // dds_rhc_default.c, dds_rhc_default_store: dds_reader_data_available_cb once the history
+    // cache is unlocked), so a command seen by no flag yet is taken in the command step its
+    // listener's wake starts.
+    if (!may_have_command()) return static_cast<const Command*>(nullptr);
     // Cleared before the take: a command arriving during or after it sets the flag again.
     if (arrived_) arrived_->store(false, std::memory_order_relaxed);
     const Result<bool> taken = reader_.take_next(sample_);
