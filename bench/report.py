@@ -445,8 +445,8 @@ def main():
         "",
         f"Run: {info.get('date', '?')} on {info.get('cpu', '?')}, {info.get('cores', '?')} cores, kernel "
         f"{info.get('kernel', '?')}, {info.get('build', '?')} build. Load average at start "
-        f"{info.get('load_start', '?')}, at end {info.get('load_end', '?')} (this machine is shared: other "
-        "builds and tests ran during the measurements, which shows in every tail figure)."
+        f"{info.get('load_start', '?')}, at end {info.get('load_end', '?')} (the end figure holds the "
+        "scale step's 64 hubs; other work on a shared machine, where there was any, shows in every tail figure)."
         + (" **Quick run: figures too short to rely on.**" if info.get("quick") == "1" else "")
         # A step run again on its own after a change it measures (`rerun:` lines in machine.txt,
         # written by hand with the command): its figures and its baseline come from that later run.

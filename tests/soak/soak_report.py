@@ -168,7 +168,17 @@ def judge(rows, nominal_hz, minutes):
     return verdict
 
 
+def can_draw():
+    """Whether the picture can be drawn: checked before an hour of soak, not after it."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 def draw(rows, path):
+    """Draws the picture into path; False (and says why) where matplotlib is missing."""
     try:
         import matplotlib
 
@@ -176,7 +186,7 @@ def draw(rows, path):
         import matplotlib.pyplot as plt
     except ImportError:
         print(f"soak: no picture ({path}): python3-matplotlib is missing (toolchain/install-deps --bench)")
-        return
+        return False
     fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True)
     for name, samples in sorted(by_process(rows).items()):
         alive = [s for s in samples if s["rss_kb"]]
@@ -194,6 +204,7 @@ def draw(rows, path):
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+    return True
 
 
 def main(argv):

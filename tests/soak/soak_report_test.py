@@ -118,5 +118,29 @@ class SlopeTest(unittest.TestCase):
         self.assertEqual(soak_report.slope_per_minute([(0, 7)]), 0.0)
 
 
+class PictureTest(unittest.TestCase):
+    def test_the_picture_is_drawn_or_its_absence_is_said(self):
+        # The driver's last line names the picture only when draw() says it drew one.
+        import contextlib
+        import io
+        import tempfile
+
+        rows = []
+        for k in range(1, 5):
+            row = dict.fromkeys(soak_report.COLUMNS, "")
+            row.update(time_s=f"{30.0 * k}", process="dock_ecu", pid="42", rss_kb="12000", threads="8",
+                       fds="14", stamp_period_max_ms="101.0")
+            rows.append(row)
+        with tempfile.TemporaryDirectory() as folder:
+            path = pathlib.Path(folder) / "soak.png"
+            said = io.StringIO()
+            with contextlib.redirect_stdout(said):
+                drawn = soak_report.draw(rows, path)
+            self.assertEqual(drawn, soak_report.can_draw())
+            self.assertEqual(path.exists(), drawn)
+            if not drawn:
+                self.assertIn("python3-matplotlib is missing", said.getvalue())
+
+
 if __name__ == "__main__":
     unittest.main()
