@@ -171,8 +171,8 @@ def cpu_ratio_aims(report, heartbeat):
                    "clock_nanosleep), reads its inputs through the fake backend (each read brings the "
                    "simulated devices up to now), runs the node and rebuilds its State; Cyclone's own threads "
                    "cost the same in both (per-thread schedstat: the difference is all on the cycle thread). In "
-                   "user space the cycle thread runs about 11,300 instructions per cycle against the loop's 9,400 "
-                   "(callgrind, 100 Hz), the State's serialisation and write included (8,400; the loop's "
+                   "user space the cycle thread ran about 11,300 instructions per cycle against the loop's 9,400 "
+                   "(one callgrind run at 100 Hz, 2026-11-27, by hand: not measured by bench/run), the State's serialisation and write included (8,400; the loop's "
                    "dds_write of the same State: 9,100); the rest of the gap is time in the kernel and the larger "
                    "footprint the cycle touches after each sleep, which grows with the other load on the machine "
                    "(the rounds' spread).", alternative=f"bare loop + dds_write: {raw:.2f} %")

@@ -150,6 +150,11 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   ProcSample hub_round = *hub_before;
   ProcSample raw_round = *raw_before;
   double round_start = start;
+  // A round's ratio: CPU seconds over the same interval, so the interval's length cancels out.
+  const auto add_round = [&](const ProcSample& hub_end, const ProcSample& raw_end) {
+    const double raw_cpu_s = raw_end.cpu_s - raw_round.cpu_s;
+    if (raw_cpu_s > 0) round_ratios.push_back((hub_end.cpu_s - hub_round.cpu_s) / raw_cpu_s);
+  };
   while (mono_now() < end) {
     dds_attach_t fired[2];
     dds_waitset_wait(waitset, fired, 2, DDS_MSECS(100));
@@ -159,8 +164,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
       auto hub_now = read_proc(hub->pid());
       auto raw_now = read_proc(raw->pid());
       if (!hub_now || !raw_now) return make_error(ErrorCode::kUnavailable, "a process under test died");
-      const double raw_cpu = cpu_percent(raw_round, *raw_now, now - round_start);
-      if (raw_cpu > 0) round_ratios.push_back(cpu_percent(hub_round, *hub_now, now - round_start) / raw_cpu);
+      add_round(*hub_now, *raw_now);
       hub_round = *hub_now;
       raw_round = *raw_now;
       round_start = now;
@@ -172,10 +176,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   if (!hub_after || !raw_after) return make_error(ErrorCode::kUnavailable, "a process under test died");
   // The last round ends with the window: counted when it is at least half a round long.
   const double last_round = start + cpu_window - round_start;
-  if (last_round >= window_s / kCpuRounds / 2 && cpu_percent(raw_round, *raw_after, last_round) > 0) {
-    round_ratios.push_back(cpu_percent(hub_round, *hub_after, last_round) /
-                           cpu_percent(raw_round, *raw_after, last_round));
-  }
+  if (last_round >= window_s / kCpuRounds / 2) add_round(*hub_after, *raw_after);
   dds_delete(waitset);
   dds_delete(streams[0].reader);
   dds_delete(streams[1].reader);
