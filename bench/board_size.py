@@ -76,18 +76,27 @@ def stripped_size(triplet, program):
     return size, groups
 
 
-def measure(arch, jobs):
-    triplet = TRIPLETS[arch]
-    if not os.path.exists(os.path.join(sysroot(arch), ".hubrt-sysroot")):
-        return {"arch": arch, "prepared": False}
+def prepared(arch):
+    return os.path.exists(os.path.join(sysroot(arch), ".hubrt-sysroot"))
+
+
+def cross_build(arch, targets, jobs):
+    """build/cross-<arch> with `targets` built (configured with the preset first when it has no cache)."""
     build = os.path.join(ROOT, "build", f"cross-{arch}")
     nice = ["nice", "-n", "19"]
     if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
         subprocess.run(nice + ["cmake", "--preset", f"cross-{arch}"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
-    types = hub_types()
-    targets = ["hubd_board"] + [f"hubd_board_{t}" for t in types]
     subprocess.run(nice + ["cmake", "--build", build, "-j", str(jobs), "--target"] + targets, check=True,
                    stdout=subprocess.DEVNULL)
+    return build
+
+
+def measure(arch, jobs):
+    triplet = TRIPLETS[arch]
+    if not prepared(arch):
+        return {"arch": arch, "prepared": False}
+    types = hub_types()
+    build = cross_build(arch, ["hubd_board"] + [f"hubd_board_{t}" for t in types], jobs)
     board_dir = os.path.join(build, "firmware", "hubd", "board")
     programs = []
     for name, program in [("every hub type", os.path.join(board_dir, "hubd"))] + \
@@ -104,21 +113,29 @@ def measure(arch, jobs):
     }
 
 
+def measure_targets(tool, archs, measure_one, errors, out):
+    """measure_one(arch) for each target, a failure (one of `errors`) recorded as its error; all written
+    to `out` as {"targets": [...]}, and returned."""
+    results = []
+    for arch in archs:
+        try:
+            results.append(measure_one(arch))
+        except errors as error:
+            print(f"{tool}: {arch}: {error}", file=sys.stderr)
+            results.append({"arch": arch, "prepared": True, "error": str(error)})
+    with open(out, "w") as f:
+        json.dump({"targets": results}, f, indent=2)
+    return results
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--out", required=True)
     parser.add_argument("--arch", nargs="+", default=["arm64", "armhf"], choices=sorted(TRIPLETS))
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
-    results = []
-    for arch in args.arch:
-        try:
-            results.append(measure(arch, args.jobs))
-        except (subprocess.CalledProcessError, OSError) as error:
-            print(f"board_size: {arch}: {error}", file=sys.stderr)
-            results.append({"arch": arch, "prepared": True, "error": str(error)})
-    with open(args.out, "w") as f:
-        json.dump({"targets": results}, f, indent=2)
+    results = measure_targets("board_size", args.arch, lambda arch: measure(arch, args.jobs),
+                              (subprocess.CalledProcessError, OSError), args.out)
     for r in results:
         if "programs" not in r:
             print(f"  {r['arch']}: {r.get('error', 'not prepared')}")

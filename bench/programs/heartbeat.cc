@@ -8,7 +8,8 @@
 // |period - nominal| between consecutive stamps (the wake-up, as the loop sees it) and between
 // consecutive arrivals (as a planner sees it). Drift is the slope of the stamps' offset from the
 // deadline grid; missed periods are grid periods without a State (the hub skips periods it is too
-// late for, the bare loop catches up in a burst).
+// late for, the bare loop catches up in a burst). After that window the CPU is measured once more
+// with the two taking turns (cpu_turns.h): that ratio is the one the aim is judged on.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "bench_common.h"
+#include "cpu_turns.h"
 #include "dock.h"
 #include "proc_stats.h"
 #include "raw_dds.h"
@@ -25,7 +27,7 @@
 namespace hubrt::bench {
 namespace {
 
-// How many equal parts of the measuring window the CPU ratio is also taken over.
+// How many equal parts of the side-by-side window its CPU ratio is taken over (reported, not judged).
 constexpr int kCpuRounds = 5;
 
 struct Stream {
@@ -96,6 +98,8 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
   out["cpu_pct"] = cpu_percent(before, after, cpu_window_s);
   out["rss_mb"] = after.rss_mb;
   out["hwm_mb"] = after.hwm_mb;
+  // Under qemu-user (bench/board_rss.py): the guest program's own share of the process's RSS.
+  if (after.guest_rss_mb >= 0) out["guest_rss_mb"] = after.guest_rss_mb;
   out["threads"] = after.threads;
   for (std::size_t i = 1; i < s.stamps.size(); ++i) {
     periods << fmt::format("{},{},stamp,{:.6f}\n", rate, s.name, (s.stamps[i] - s.stamps[i - 1]) * 1e3);
@@ -108,7 +112,7 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
 
 Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, double window_s,
                                          std::ofstream& periods, const std::vector<std::string>& hubd_args,
-                                         bool board_build) {
+                                         bool board_build, const CpuTurnsOptions& turns) {
   const double period = 1.0 / rate;
   std::vector<std::string> args = {"--hub", "dock_ecu", "--rate", fmt::format("{}", rate)};
   args.insert(args.end(), hubd_args.begin(), hubd_args.end());
@@ -137,15 +141,15 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
     dds_waitset_wait(waitset, fired, 2, DDS_MSECS(50));
     for (Stream& s : streams) take(s, mono_now(), false);
   }
+  const double steal_before = machine_steal_s();
   auto hub_before = read_proc(hub->pid());
   auto raw_before = read_proc(raw->pid());
   if (!hub_before || !raw_before) return make_error(ErrorCode::kUnavailable, "a process under test died");
   const double start = mono_now();
   const double end = start + window_s;
-  // The CPU ratio is also taken per round (kCpuRounds equal parts of the window): on a shared
-  // machine one process's share swings with the other load (single 6 s windows gave 0.78 to 1.33
-  // for the same two programs), and the median of the rounds' ratios, with their spread, says more
-  // than one ratio over the whole window.
+  // The side-by-side CPU ratio is also taken per round (kCpuRounds equal parts of the window): on a
+  // shared machine one process's share swings with the other load (single 6 s windows gave 0.78 to
+  // 1.33 for the same two programs). It is reported; the aim is judged on the turns after the window.
   std::vector<double> round_ratios;
   ProcSample hub_round = *hub_before;
   ProcSample raw_round = *raw_before;
@@ -171,22 +175,36 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
     }
   }
   const double cpu_window = mono_now() - start;
+  const double steal_s = machine_steal_s() - steal_before;
   auto hub_after = read_proc(hub->pid());
   auto raw_after = read_proc(raw->pid());
   if (!hub_after || !raw_after) return make_error(ErrorCode::kUnavailable, "a process under test died");
   // The last round ends with the window: counted when it is at least half a round long.
   const double last_round = start + cpu_window - round_start;
   if (last_round >= window_s / kCpuRounds / 2) add_round(*hub_after, *raw_after);
+  const auto idle = [&](double seconds) {
+    const double until = mono_now() + seconds;
+    for (double now = mono_now(); now < until; now = mono_now()) {
+      dds_attach_t fired[2];
+      dds_waitset_wait(waitset, fired, 2, static_cast<dds_duration_t>(std::min(until - now, 0.1) * 1e9));
+      for (Stream& s : streams) take(s, mono_now(), false);
+    }
+  };
+  progress(
+      fmt::format("heartbeat {} Hz: CPU in turns, {} rounds of {} s each", rate, turns.rounds, turns.turn_s));
+  auto in_turns = measure_cpu_in_turns(*hub, *raw, turns, idle);
   dds_delete(waitset);
   dds_delete(streams[0].reader);
   dds_delete(streams[1].reader);
   stop(*hub);
   stop(*raw);
+  if (!in_turns) return std::move(in_turns).error();
 
   nlohmann::ordered_json out;
   out["rate_hz"] = rate;
   out["window_s"] = window_s;
   out["hubd_args"] = hubd_args;
+  out["machine_steal_ms"] = steal_s * 1e3;
   out["hubd"] =
       board_build ? "board build, rpi4-dock-ecu, linux backend" : "development build, host-sim, fake backend";
   out["hub"] = describe(streams[0], period, window_s, *hub_before, *hub_after, cpu_window, periods, rate);
@@ -200,23 +218,25 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   out["ratio_stamp_max"] = ratio("stamp_jitter_ms", "max");
   const double raw_cpu = out["raw"]["cpu_pct"].get<double>();
   out["ratio_cpu_window"] = raw_cpu > 0 ? out["hub"]["cpu_pct"].get<double>() / raw_cpu : 0.0;
-  // The median of the rounds' ratios (the whole window's when no round completed).
-  out["ratio_cpu"] = out["ratio_cpu_window"];
-  out["ratio_cpu_rounds"] = round_ratios;
-  if (!round_ratios.empty()) {
-    std::vector<double> sorted = round_ratios;
-    std::sort(sorted.begin(), sorted.end());
-    const std::size_t n = sorted.size();
-    out["ratio_cpu"] = n % 2 == 1 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
-    out["ratio_cpu_min"] = sorted.front();
-    out["ratio_cpu_max"] = sorted.back();
-  }
+  // Side by side: the median of the rounds' ratios (the whole window's when no round completed).
+  out["ratio_cpu_side_by_side"] =
+      round_ratios.empty() ? out["ratio_cpu_window"].get<double>() : median_of(round_ratios);
+  out["ratio_cpu_side_by_side_rounds"] = round_ratios;
+  // In turns: the figure judged.
+  out["cpu_turns"] = {
+      {"rounds", turns.rounds},         {"turn_s", turns.turn_s},
+      {"hub_cpu_pct", in_turns->a_pct}, {"raw_cpu_pct", in_turns->b_pct},
+      {"ratios", in_turns->ratios},     {"same_program_change", in_turns->same_program_change}};
+  out["ratio_cpu"] = in_turns->median;
+  out["ratio_cpu_min"] = in_turns->min;
+  out["ratio_cpu_max"] = in_turns->max;
   out["ratio_rss"] = out["hub"]["rss_mb"].get<double>() / out["raw"]["rss_mb"].get<double>();
   return out;
 }
 
 int run(const std::string& out_file, const std::string& periods_file, const std::vector<double>& rates,
-        double window_s, const std::vector<std::string>& hubd_args, bool board_build) {
+        double window_s, const std::vector<std::string>& hubd_args, bool board_build,
+        const CpuTurnsOptions& turns) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
   auto participant = raw_participant(domain->domain_id());
@@ -227,16 +247,17 @@ int run(const std::string& out_file, const std::string& periods_file, const std:
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
     progress(fmt::format("heartbeat: hub and bare clock_nanosleep loop at {} Hz for {} s", rate, window_s));
-    auto measured = measure(*participant, rate, window_s, periods, hubd_args, board_build);
+    auto measured = measure(*participant, rate, window_s, periods, hubd_args, board_build, turns);
     if (!measured) return fmt::print(stderr, "{}\n", measured.error().message), 1;
-    progress(
-        fmt::format("heartbeat {} Hz: stamp jitter p99 hub {:.3f} ms, raw {:.3f} ms; CPU hub {:.2f} %, raw "
-                    "{:.2f} % (hub / raw, median of rounds {:.2f}x); RSS hub {:.1f} MB, raw {:.1f} MB",
-                    rate, (*measured)["hub"]["stamp_jitter_ms"]["p99"].get<double>(),
-                    (*measured)["raw"]["stamp_jitter_ms"]["p99"].get<double>(),
-                    (*measured)["hub"]["cpu_pct"].get<double>(), (*measured)["raw"]["cpu_pct"].get<double>(),
-                    (*measured)["ratio_cpu"].get<double>(), (*measured)["hub"]["rss_mb"].get<double>(),
-                    (*measured)["raw"]["rss_mb"].get<double>()));
+    progress(fmt::format(
+        "heartbeat {} Hz: stamp jitter p99 hub {:.3f} ms, raw {:.3f} ms; CPU hub {:.2f} %, raw "
+        "{:.2f} % side by side; hub / raw in turns {:.2f}x (median of rounds); RSS hub {:.1f} MB, "
+        "raw {:.1f} MB",
+        rate, (*measured)["hub"]["stamp_jitter_ms"]["p99"].get<double>(),
+        (*measured)["raw"]["stamp_jitter_ms"]["p99"].get<double>(),
+        (*measured)["hub"]["cpu_pct"].get<double>(), (*measured)["raw"]["cpu_pct"].get<double>(),
+        (*measured)["ratio_cpu"].get<double>(), (*measured)["hub"]["rss_mb"].get<double>(),
+        (*measured)["raw"]["rss_mb"].get<double>()));
     result["rates"].push_back(std::move(*measured));
   }
   dds_delete(*participant);
@@ -264,6 +285,12 @@ int main(int argc, char** argv) {
   app.add_flag("--board-build", board_build,
                "Measure the board build of hubd (what the packages install) on rpi4-dock-ecu with the Linux "
                "backend instead of the development build on host-sim (its devices are missing here)");
+  hubrt::bench::CpuTurnsOptions turns;
+  app.add_option(
+         "--cpu-turns", turns.rounds,
+         "Rounds of CPU measured in turns after the window (each: the hub alone, then the bare loop alone)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--cpu-turn-seconds", turns.turn_s, "Length of each turn")->check(CLI::Range(0.1, 600.0));
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, periods, rates, window_s, hubd_args, board_build);
+  return hubrt::bench::run(out, periods, rates, window_s, hubd_args, board_build, turns);
 }

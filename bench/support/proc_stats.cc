@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "guest_memory.h"
+
 namespace hubrt::bench {
 namespace {
 
@@ -68,7 +70,19 @@ Expected<ProcSample> read_proc(pid_t pid) {
     if (key == "VmHWM:") sample.hwm_mb = value / 1024.0;
     if (key == "Threads:") sample.threads = static_cast<int>(value);
   }
+  sample.guest_rss_mb = emulated_guest_rss_mb(pid).value_or(-1);
   return sample;
+}
+
+double machine_steal_s() {
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  // "cpu user nice system idle iowait irq softirq steal ...", in clock ticks.
+  unsigned long long fields[8] = {};
+  stat >> cpu;
+  for (auto& field : fields) stat >> field;
+  if (!stat || cpu != "cpu") return 0;
+  return static_cast<double>(fields[7]) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
 double cpu_percent(const ProcSample& before, const ProcSample& after, double elapsed_s) noexcept {

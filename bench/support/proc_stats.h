@@ -13,10 +13,19 @@ struct ProcSample {
   double rss_mb = 0;  // resident set now (VmRSS)
   double hwm_mb = 0;  // peak resident set (VmHWM)
   int threads = 0;
+  // Under qemu-user: the guest program's own resident memory, without qemu's (guest_memory.h);
+  // negative for a native process.
+  double guest_rss_mb = -1;
 };
 
 // Errors: kNotFound when the process is gone; kIo when the files do not parse.
 Expected<ProcSample> read_proc(pid_t pid);
+
+// Time this machine's virtual CPUs were ready but not run because the hypervisor ran something
+// else ("steal" in /proc/stat, proc(5)), summed over the CPUs, in seconds; 0 on bare metal. A
+// window's difference says how long the whole machine stalled under the programs measured, which
+// no scheduling policy inside it can prevent (the periods a SCHED_FIFO hub misses then).
+double machine_steal_s();
 
 // CPU use between two samples taken `elapsed_s` apart, in % of one core.
 double cpu_percent(const ProcSample& before, const ProcSample& after, double elapsed_s) noexcept;
