@@ -1,6 +1,8 @@
 // bench/support/guest_memory: the guest's share of a qemu-user process, from its smaps.
 #include "guest_memory.h"
 
+#include <chrono>
+
 #include <gtest/gtest.h>
 
 #include "hubrt/test_support/child_process.h"
@@ -52,9 +54,11 @@ TEST(GuestMemory, NotAnEmulatorsMapsIsNoFigure) {
 }
 
 TEST(GuestMemory, ANativeProcessHasNone) {
-  // A child rather than this test itself, which the cross tier runs under qemu-user.
-  auto child = test_support::ChildProcess::start("/bin/sh", {"-c", "exec sleep 600"});
+  // A child rather than this test itself, which the cross tier runs under qemu-user. There the
+  // child is a copy of qemu until its exec of /bin/sh is done: asked only once the shell speaks.
+  auto child = test_support::ChildProcess::start("/bin/sh", {"-c", "echo started; exec sleep 600"});
   ASSERT_TRUE(child.is_ok()) << child.error().message;
+  ASSERT_TRUE(child->wait_for_output("started", std::chrono::seconds(20))) << child->stderr_text();
   EXPECT_FALSE(emulated_guest_rss_mb(child->pid()).has_value());
   EXPECT_FALSE(emulated_guest_rss_mb(-1).has_value());  // no such process: no figure, no crash
 }
