@@ -42,6 +42,7 @@
 
 #include "bench_common.h"
 #include "echo_peer.h"
+#include "median.h"
 #include "raw_dds.h"
 
 namespace hubrt::bench {
@@ -125,13 +126,6 @@ void run_sparse(Side& raw, Side& hub, std::size_t commands, unsigned seed) {
     for (Side* side : order) side->round_trip_into(&side->sparse_ms);
     pause_s(gap_s(random));
   }
-}
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 // The samples of one regime: pooled, and per round.

@@ -21,6 +21,7 @@
 #include "bench_common.h"
 #include "cpu_turns.h"
 #include "dock.h"
+#include "median.h"
 #include "proc_stats.h"
 #include "raw_dds.h"
 
@@ -134,13 +135,18 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
     dds_waitset_attach(waitset, dds_create_readcondition(streams[i].reader, DDS_ANY_STATE),
                        static_cast<dds_attach_t>(i));
   }
+  // Draining both readers without recording, for `seconds`: the warm-up, and the CPU turns after
+  // the window.
+  const auto idle = [&](double seconds) {
+    const double until = mono_now() + seconds;
+    for (double now = mono_now(); now < until; now = mono_now()) {
+      dds_attach_t fired[2];
+      dds_waitset_wait(waitset, fired, 2, static_cast<dds_duration_t>(std::min(until - now, 0.1) * 1e9));
+      for (Stream& s : streams) take(s, mono_now(), false);
+    }
+  };
   // Warm-up: both discovered and steady before anything counts.
-  const double warm_until = mono_now() + 2.0;
-  while (mono_now() < warm_until) {
-    dds_attach_t fired[2];
-    dds_waitset_wait(waitset, fired, 2, DDS_MSECS(50));
-    for (Stream& s : streams) take(s, mono_now(), false);
-  }
+  idle(2.0);
   const double steal_before = machine_steal_s();
   auto hub_before = read_proc(hub->pid());
   auto raw_before = read_proc(raw->pid());
@@ -182,14 +188,6 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   // The last round ends with the window: counted when it is at least half a round long.
   const double last_round = start + cpu_window - round_start;
   if (last_round >= window_s / kCpuRounds / 2) add_round(*hub_after, *raw_after);
-  const auto idle = [&](double seconds) {
-    const double until = mono_now() + seconds;
-    for (double now = mono_now(); now < until; now = mono_now()) {
-      dds_attach_t fired[2];
-      dds_waitset_wait(waitset, fired, 2, static_cast<dds_duration_t>(std::min(until - now, 0.1) * 1e9));
-      for (Stream& s : streams) take(s, mono_now(), false);
-    }
-  };
   progress(
       fmt::format("heartbeat {} Hz: CPU in turns, {} rounds of {} s each", rate, turns.rounds, turns.turn_s));
   auto in_turns = measure_cpu_in_turns(*hub, *raw, turns, idle);

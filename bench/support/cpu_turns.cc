@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "median.h"
 #include "proc_stats.h"
 
 namespace hubrt::bench {
@@ -55,13 +56,6 @@ Expected<double> turn(const test_support::ChildProcess& measured, const test_sup
 }
 
 }  // namespace
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
 
 Expected<CpuTurns> measure_cpu_in_turns(const test_support::ChildProcess& a,
                                         const test_support::ChildProcess& b, const CpuTurnsOptions& options,

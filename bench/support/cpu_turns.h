@@ -44,7 +44,4 @@ Expected<CpuTurns> measure_cpu_in_turns(const test_support::ChildProcess& a,
                                         const test_support::ChildProcess& b, const CpuTurnsOptions& options,
                                         const std::function<void(double)>& idle);
 
-// Median of values (0 when empty).
-double median_of(std::vector<double> values);
-
 }  // namespace hubrt::bench

@@ -14,6 +14,8 @@
 
 #include "hubrt/test_support/child_process.h"
 
+#include "median.h"
+
 namespace hubrt::bench {
 namespace {
 
