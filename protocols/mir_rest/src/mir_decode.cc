@@ -1,5 +1,9 @@
 // The answers' decoder: runs on the HTTP worker thread (it allocates while parsing), never throws.
 // Malformed JSON, a missing field or one of the wrong type is a problem named in the reply.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -10,12 +14,51 @@ namespace {
 
 using nlohmann::json;
 
-// The field's problem, or empty when `object[key]` exists with the expected kind.
 bool has_number(const json& object, const char* key) {
   return object.is_object() && object.contains(key) && object[key].is_number();
 }
 bool has_string(const json& object, const char* key) {
   return object.is_object() && object.contains(key) && object[key].is_string();
+}
+
+// A JSON number may be any size: 1e300 as an int, or as a float, is undefined behaviour in a plain
+// cast (nlohmann's get<int> is one; the fuzzer found it). These take a number only when the field's
+// type holds it: an integer (or an integral float) in range, a finite float within float's range.
+bool fits(const json& number, int& out) {
+  if (number.is_number_integer()) {  // int64 or uint64: compare before narrowing
+    if (number.is_number_unsigned()) {
+      const auto value = number.get<std::uint64_t>();
+      if (value > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) return false;
+      out = static_cast<int>(value);
+      return true;
+    }
+    const auto value = number.get<std::int64_t>();
+    if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) return false;
+    out = static_cast<int>(value);
+    return true;
+  }
+  const double value = number.get<double>();
+  if (!(value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max()) ||
+      value != std::trunc(value)) {
+    return false;  // NaN fails the range test too
+  }
+  out = static_cast<int>(value);
+  return true;
+}
+bool fits(const json& number, float& out) {
+  const double value = number.get<double>();  // exact for floats, nearest for 64-bit integers
+  if (!std::isfinite(value) || std::fabs(value) > std::numeric_limits<float>::max()) return false;
+  out = static_cast<float>(value);
+  return true;
+}
+
+// The field as T, or why not ("no number 'x'", "'x' is out of range: 1e+300").
+template <class T>
+bool read_number(const json& object, const char* key, T& out, std::string& why) {
+  if (!has_number(object, key)) return why = fmt::format("no number '{}'", key), false;
+  if (!fits(object[key], out))
+    return why = fmt::format("'{}' is out of range: {}", key, object[key].dump()), false;
+  return true;
 }
 
 template <std::size_t N>
@@ -51,20 +94,20 @@ std::string_view http_reason(int status) {
 
 // GET/PUT /status. Only the fields the hub uses must be there (RobotStatus of MiR REST API v2.0.0).
 bool read_status(const json& body, MirStatus& out, std::string& why) {
-  if (!has_number(body, "state_id")) return why = "no number 'state_id'", false;
-  out.state_id = body["state_id"].get<int>();
+  if (!read_number(body, "state_id", out.state_id, why)) return false;
   if (has_string(body, "state_text")) copy_string(out.state_text, body["state_text"]);
   if (!body.contains("position") || !body["position"].is_object()) return why = "no object 'position'", false;
   const json& position = body["position"];
-  if (!has_number(position, "x") || !has_number(position, "y") || !has_number(position, "orientation")) {
-    return why = "'position' lacks a number x, y or orientation", false;
+  if (!read_number(position, "x", out.x, why) || !read_number(position, "y", out.y, why) ||
+      !read_number(position, "orientation", out.yaw_deg, why)) {
+    return why = fmt::format("'position': {}", why), false;
   }
-  out.x = position["x"].get<float>();
-  out.y = position["y"].get<float>();
-  out.yaw_deg = position["orientation"].get<float>();
-  if (!has_number(body, "battery_percentage")) return why = "no number 'battery_percentage'", false;
-  out.battery_percent = body["battery_percentage"].get<float>();
-  out.mission_queue_id = has_number(body, "mission_queue_id") ? body["mission_queue_id"].get<int>() : 0;
+  if (!read_number(body, "battery_percentage", out.battery_percent, why)) return false;
+  out.mission_queue_id = 0;  // absent or null: no mission queued
+  if (has_number(body, "mission_queue_id") &&
+      !read_number(body, "mission_queue_id", out.mission_queue_id, why)) {
+    return false;
+  }
   if (has_string(body, "map_id")) copy_string(out.map_id, body["map_id"]);
   if (has_string(body, "mission_text")) copy_string(out.mission_text, body["mission_text"]);
   out.error_count = 0;
@@ -73,7 +116,8 @@ bool read_status(const json& body, MirStatus& out, std::string& why) {
     out.error_count = static_cast<int>(errors.size());
     if (!errors.empty()) {
       const json& first = errors.front();
-      const std::string code = has_number(first, "code") ? std::to_string(first["code"].get<long>()) : "?";
+      // The code is only shown: any number is shown as the platform sent it.
+      const std::string code = has_number(first, "code") ? first["code"].dump() : "?";
       const std::string text =
           has_string(first, "description") ? first["description"].get<std::string>() : first.dump();
       out.first_error.assign_cut(fmt::format("{}: {}", code, text));
@@ -83,8 +127,7 @@ bool read_status(const json& body, MirStatus& out, std::string& why) {
 }
 
 bool read_mission(const json& body, MirReply& reply, std::string& why) {
-  if (!has_number(body, "id")) return why = "no number 'id'", false;
-  reply.mission_id = body["id"].get<int>();
+  if (!read_number(body, "id", reply.mission_id, why)) return false;
   if (!has_string(body, "state")) return why = "no string 'state'", false;
   copy_string(reply.mission_state, body["state"]);
   return true;

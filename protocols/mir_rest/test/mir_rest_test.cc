@@ -2,6 +2,9 @@
 // good, refused, malformed — decoded into a reply that says what was wrong, never a throw.
 #include "hubrt/protocol/mir_rest.h"
 
+#include <limits>
+#include <string>
+
 #include <gtest/gtest.h>
 
 namespace hubrt::protocol::mir {
@@ -80,6 +83,49 @@ TEST(MirDecode, RefusalsMalformedJsonAndWrongTypesAreProblemsNotCrashes) {
   const MirReply huge = decode(get_status(), 200, R"({"state_id": 1e999})");
   EXPECT_FALSE(huge.ok);
   EXPECT_TRUE(decode(clear_queue(), 204, "").ok);
+}
+
+// The status above with the value of `key` (wherever it is) replaced by `value`.
+std::string status_with(const std::string& key, const std::string& value) {
+  std::string body = kStatus;
+  const std::string quoted = "\"" + key + "\": ";
+  const std::size_t at = body.find(quoted) + quoted.size();
+  const std::size_t end = body.find_first_of(",}", at);
+  return body.replace(at, end - at, value);
+}
+
+// Numbers JSON allows but the field's type cannot hold are problems, not a cast: a plain cast of
+// 1e300 to int is undefined behaviour (the fuzz tier's crash of 2026-11-28).
+TEST(MirDecode, NumbersOutsideTheFieldsRangeAreProblems) {
+  ASSERT_TRUE(decode(get_status(), 200, status_with("state_id", "5")).ok);
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "1e300")).problem.view(),
+            "GET /status: 'state_id' is out of range: 1e+300");
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "2147483648")).problem.view(),
+            "GET /status: 'state_id' is out of range: 2147483648");
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "-2147483649")).problem.view(),
+            "GET /status: 'state_id' is out of range: -2147483649");
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "18446744073709551615")).problem.view(),
+            "GET /status: 'state_id' is out of range: 18446744073709551615");
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "5.5")).problem.view(),
+            "GET /status: 'state_id' is out of range: 5.5");
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "5.0")).status.state_id, 5);
+  EXPECT_EQ(decode(get_status(), 200, status_with("state_id", "-2147483648")).status.state_id,
+            std::numeric_limits<int>::min());
+  EXPECT_EQ(decode(get_status(), 200, status_with("x", "1e300")).problem.view(),
+            "GET /status: 'position': 'x' is out of range: 1e+300");
+  EXPECT_EQ(decode(get_status(), 200, status_with("battery_percentage", "-1e39")).problem.view(),
+            "GET /status: 'battery_percentage' is out of range: -1e+39");
+  EXPECT_FLOAT_EQ(decode(get_status(), 200, status_with("x", "3")).status.x, 3.0F);
+  EXPECT_EQ(decode(get_status(), 200, status_with("mission_queue_id", "1e10")).problem.view(),
+            "GET /status: 'mission_queue_id' is out of range: 10000000000.0");
+  EXPECT_EQ(decode(get_status(), 200, status_with("mission_queue_id", "null")).status.mission_queue_id, 0);
+  EXPECT_EQ(decode(get_mission(3), 200, R"({"id": 1e300, "state": "Done"})").problem.view(),
+            "GET /mission_queue/{id}: 'id' is out of range: 1e+300");
+  // An error's code is only shown: any number is shown as it came.
+  const MirReply error =
+      decode(get_status(), 200, status_with("errors", R"([{"code": 1e300, "description": "x"}])"));
+  ASSERT_TRUE(error.ok) << error.problem.view();
+  EXPECT_EQ(error.status.first_error.view(), "1e+300: x");
 }
 
 }  // namespace

@@ -237,7 +237,8 @@ MirAnswer MirPlatform::put_status(std::string_view body, Time now) {
   if (!request.contains("state_id") || !request["state_id"].is_number_integer()) {
     return error_answer(400, "Expected state_id or clear_error");
   }
-  const int wanted = request["state_id"].get<int>();
+  // Compared as sent: narrowed to int first, 4294967299 would pass for 3.
+  const json& wanted = request["state_id"];
   if (wanted != 3 && wanted != 4) return error_answer(400, "state_id must be 3 (ready) or 4 (pause)");
   if (state_id_ == 12) return error_answer(409, "The robot is in error: clear the error first");
   if (wanted == 4) {

@@ -71,6 +71,8 @@ TEST_F(MirPlatformTest, PauseHoldsItAndAnErrorStopsItUntilCleared) {
   EXPECT_EQ(call("PUT", "/status", R"({"clear_error": true})").status, 200);
   EXPECT_EQ(status()["state_id"], 4);
   EXPECT_EQ(call("PUT", "/status", R"({"state_id": 7})").status, 400);
+  EXPECT_EQ(call("PUT", "/status", R"({"state_id": 4294967299})").status, 400);  // 3 modulo 2^32
+  EXPECT_EQ(status()["state_id"], 4);
   EXPECT_EQ(call("PUT", "/status", "{not json").status, 400);
 }
 
