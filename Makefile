@@ -38,7 +38,10 @@ build: deps
 demo: build
 	@toolchain/demo
 
-test: test-asan test-tsan
+# The TSan build runs beside the ASan tests at idle priority (toolchain/default-suite says why);
+# test-asan and test-tsan run each half alone.
+test: deps
+	@toolchain/default-suite $(JOBS)
 
 test-asan: deps
 	@cmake --preset host-asan >/dev/null
