@@ -113,11 +113,12 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
 
 Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, double window_s,
                                          std::ofstream& periods, const std::vector<std::string>& hubd_args,
-                                         bool board_build, const CpuTurnsOptions& turns) {
+                                         const std::string& board_hubd, const CpuTurnsOptions& turns) {
+  const bool board_build = !board_hubd.empty();
   const double period = 1.0 / rate;
   std::vector<std::string> args = {"--hub", "dock_ecu", "--rate", fmt::format("{}", rate)};
   args.insert(args.end(), hubd_args.begin(), hubd_args.end());
-  auto hub = board_build ? start_board_hubd(args) : start_hubd(args);
+  auto hub = board_build ? start_board_hubd(board_hubd, args) : start_hubd(args);
   if (!hub) return std::move(hub).error();
   auto raw = start_raw_peer({"heartbeat", "--rate", fmt::format("{}", rate)});
   if (!raw) return std::move(raw).error();
@@ -205,6 +206,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
   out["machine_steal_ms"] = steal_s * 1e3;
   out["hubd"] =
       board_build ? "board build, rpi4-dock-ecu, linux backend" : "development build, host-sim, fake backend";
+  if (board_build) out["hubd_program"] = board_hubd;
   out["hub"] = describe(streams[0], period, window_s, *hub_before, *hub_after, cpu_window, periods, rate);
   out["raw"] = describe(streams[1], period, window_s, *raw_before, *raw_after, cpu_window, periods, rate);
   const auto ratio = [&](const char* series, const char* stat) {
@@ -233,7 +235,7 @@ Expected<nlohmann::ordered_json> measure(dds_entity_t participant, double rate, 
 }
 
 int run(const std::string& out_file, const std::string& periods_file, const std::vector<double>& rates,
-        double window_s, const std::vector<std::string>& hubd_args, bool board_build,
+        double window_s, const std::vector<std::string>& hubd_args, const std::string& board_hubd,
         const CpuTurnsOptions& turns) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
@@ -245,7 +247,7 @@ int run(const std::string& out_file, const std::string& periods_file, const std:
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
     progress(fmt::format("heartbeat: hub and bare clock_nanosleep loop at {} Hz for {} s", rate, window_s));
-    auto measured = measure(*participant, rate, window_s, periods, hubd_args, board_build, turns);
+    auto measured = measure(*participant, rate, window_s, periods, hubd_args, board_hubd, turns);
     if (!measured) return fmt::print(stderr, "{}\n", measured.error().message), 1;
     progress(fmt::format(
         "heartbeat {} Hz: stamp jitter p99 hub {:.3f} ms, raw {:.3f} ms; CPU hub {:.2f} %, raw "
@@ -283,6 +285,12 @@ int main(int argc, char** argv) {
   app.add_flag("--board-build", board_build,
                "Measure the board build of hubd (what the packages install) on rpi4-dock-ecu with the Linux "
                "backend instead of the development build on host-sim (its devices are missing here)");
+  std::string board_hubd = hubrt::bench::board_hubd_path();
+  app.add_option(
+         "--board-hubd", board_hubd,
+         "With --board-build: the board program to run, e.g. build/host-board's, built with the board "
+         "packages' size flags (default: this build's board/dock_ecu/hubd)")
+      ->check(CLI::ExistingFile);
   hubrt::bench::CpuTurnsOptions turns;
   app.add_option(
          "--cpu-turns", turns.rounds,
@@ -290,5 +298,6 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   app.add_option("--cpu-turn-seconds", turns.turn_s, "Length of each turn")->check(CLI::Range(0.1, 600.0));
   CLI11_PARSE(app, argc, argv);
-  return hubrt::bench::run(out, periods, rates, window_s, hubd_args, board_build, turns);
+  return hubrt::bench::run(out, periods, rates, window_s, hubd_args, board_build ? board_hubd : std::string(),
+                           turns);
 }

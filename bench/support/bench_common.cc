@@ -47,10 +47,15 @@ Expected<test_support::ChildProcess> start_hubd(const std::vector<std::string>& 
   return test_support::ChildProcess::start(hubd_path(), all, full);
 }
 
-Expected<test_support::ChildProcess> start_board_hubd(const std::vector<std::string>& args) {
+std::string board_hubd_path() {
+  return HUBRT_HUBD_BOARD_PATH;
+}
+
+Expected<test_support::ChildProcess> start_board_hubd(const std::string& program,
+                                                      const std::vector<std::string>& args) {
   std::vector<std::string> all = {"--board", "rpi4-dock-ecu", "--log-level", "warn"};
   all.insert(all.end(), args.begin(), args.end());
-  return test_support::ChildProcess::start(HUBRT_HUBD_BOARD_PATH, all, {{"HUBRT_CONFIG_DIR", source_dir()}});
+  return test_support::ChildProcess::start(program, all, {{"HUBRT_CONFIG_DIR", source_dir()}});
 }
 
 Expected<test_support::ChildProcess> start_raw_peer(const std::vector<std::string>& args) {

@@ -29,8 +29,11 @@ Expected<test_support::ChildProcess> start_hubd(const std::vector<std::string>& 
 // ECU's hub type alone, no fake backend, no simulators) with `args` after `--board rpi4-dock-ecu --log-level
 // warn`: the Dock ECU on the Linux backend. On a machine without the Pi's GPIO chip its devices are missing
 // (supervised, opened again with back-off; its outputs drive nothing) and it publishes its State as on a Pi.
-// Errors: spawning.
-Expected<test_support::ChildProcess> start_board_hubd(const std::vector<std::string>& args);
+// `program`: that board program of this build (board_hubd_path()) or of another build, e.g. the
+// host-board preset's, built with the packages' size flags (bench/run). Errors: spawning.
+Expected<test_support::ChildProcess> start_board_hubd(const std::string& program,
+                                                      const std::vector<std::string>& args);
+std::string board_hubd_path();
 // hubrt_bench_raw_peer with `args`; waits for its ready line.
 Expected<test_support::ChildProcess> start_raw_peer(const std::vector<std::string>& args);
 // SIGTERM and reap (SIGKILL after 5 s).
