@@ -8,6 +8,7 @@
 
 #include "hubrt/assembly/diagnostics_stage.h"
 #include "hubrt/assembly/hub_types.h"
+#include "hubrt/assembly/linux_device_libraries.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/linux/backend.h"
@@ -74,6 +75,10 @@ Expected<CheckedHub> check_hub(const AssemblyRequest& request) {
   auto required = type->requirements(out.config);
   if (!required) return std::move(required).error();
   if (auto ok = hal::check_requirements(out.board, *required); !ok) return std::move(ok).error();
+  if (request.backend == BackendKind::kLinux) {
+    if (auto ok = check_device_libraries(*required, linux_device_libraries()); !ok)
+      return std::move(ok).error();
+  }
   if (auto ok = type->check(out.config); !ok) return std::move(ok).error();
   if (request.backend == BackendKind::kFake && request.simulation == nullptr) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: the fake backend is not available: {}",
@@ -151,7 +156,7 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     out->simulated = std::move(*simulated);
     out->devices = &out->simulated->backend();
   } else {
-    out->backend = std::make_unique<hal::LinuxBackend>();
+    out->backend = std::make_unique<hal::LinuxBackend>(linux_device_libraries());
     out->devices = out->backend.get();
   }
 

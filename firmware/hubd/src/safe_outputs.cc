@@ -134,7 +134,8 @@ int run_safe_outputs(const SafeOutputsRequest& request, spdlog::logger& log) {
     backend = &simulated->backend();
     log.warn("fake backend: the lines a stopped hubd drove lived in that process; these are fresh ones");
   } else {
-    linux_backend = std::make_unique<hal::LinuxBackend>();
+    // GPIO outputs only: no device library beyond GPIO is needed (LinuxDeviceLibraries).
+    linux_backend = std::make_unique<hal::LinuxBackend>(hal::LinuxDeviceLibraries{});
     backend = linux_backend.get();
   }
 

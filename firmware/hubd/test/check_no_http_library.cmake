@@ -4,9 +4,15 @@
 # does at load time (~2 MB of resident memory in every hubd, docs/benchmarks.md). The same check
 # on the module must fail (WILL_FAIL), which shows the pattern still matches the library's name.
 # The program's own shared libraries (a HUBRT_SHARED_LIBS build) are looked at with it.
-#   cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake
+# LIBRARIES: another pattern of library names the program must not need, e.g. the device libraries
+# a board's program links only for hub types that open such devices (hubs/HubTypes.cmake, DEVICES).
+#   cmake -DBINARY=<program> -DREADELF=<readelf> [-DLIBRARIES=<regex>] -P check_no_http_library.cmake
 if(NOT BINARY OR NOT READELF)
-  message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DREADELF=<readelf> -P check_no_http_library.cmake")
+  message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DREADELF=<readelf> [-DLIBRARIES=<regex>] "
+                      "-P check_no_http_library.cmake")
+endif()
+if(NOT LIBRARIES)
+  set(LIBRARIES "libcpp-httplib")
 endif()
 include(${CMAKE_CURRENT_LIST_DIR}/program_files.cmake)
 hubrt_program_files("${BINARY}" "${READELF}" files)
@@ -21,10 +27,10 @@ foreach(file IN LISTS files)
     message(FATAL_ERROR "${file}: no NEEDED entry found (not a dynamically linked program?)")
   endif()
   foreach(entry IN LISTS needed)
-    if(entry MATCHES "libcpp-httplib")
-      message(FATAL_ERROR "${file} needs the HTTP client library: ${entry}")
+    if(entry MATCHES "${LIBRARIES}")
+      message(FATAL_ERROR "${file} needs a library it should not (${LIBRARIES}): ${entry}")
     endif()
   endforeach()
 endforeach()
 list(LENGTH files count)
-message(STATUS "${BINARY} (${count} files with its own libraries): no NEEDED entry for libcpp-httplib")
+message(STATUS "${BINARY} (${count} files with its own libraries): no NEEDED entry for ${LIBRARIES}")

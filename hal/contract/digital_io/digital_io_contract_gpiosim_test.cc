@@ -52,7 +52,7 @@ class GpioSimHarness final : public DigitalIoHarness {
 
  private:
   kernel_test::ScopedGpioSimChip chip_;
-  LinuxBackend backend_;
+  LinuxBackend backend_{LinuxDeviceLibraries{}};  // GPIO only
   ManualClock clock_;
 };
 

@@ -1,20 +1,34 @@
 #include "hubrt/hal/linux/backend.h"
 
+#include <string_view>
 #include <utility>
+
+#include <fmt/format.h>
 
 #include "hubrt/hal/common/debounced_input.h"
 #include "hubrt/hal/httplib/open_http_module.h"
-#include "hubrt/hal/libmodbus/open_libmodbus.h"
 #include "hubrt/hal/linux/gpiod_lines.h"
-#include "hubrt/hal/rfid/open_badge_reader.h"
-#include "hubrt/hal/socketcan/open_socketcan.h"
 
 namespace hubrt::hal {
+namespace {
 
-LinuxBackend::LinuxBackend() : LinuxBackend(httplib_client::default_http_module_paths()) {}
+// What opening a device of a kind the program does not link says: which device, and why a board's
+// program may lack its library (docs/board-size.md, "Device libraries per hub type").
+Error not_linked(std::string_view device, std::string_view kind, std::string_view library) {
+  return make_error(ErrorCode::kUnavailable,
+                    fmt::format("{}: this hubd is built without {} devices ({}): none of the hub types it "
+                                "holds opens one (a board's program links the device libraries of its hub "
+                                "type's DEVICES, hubs/<hub type>/CMakeLists.txt)",
+                                device, kind, library));
+}
 
-LinuxBackend::LinuxBackend(std::vector<std::string> http_module_paths)
-    : http_module_paths_(std::move(http_module_paths)) {}
+}  // namespace
+
+LinuxBackend::LinuxBackend(LinuxDeviceLibraries libraries)
+    : LinuxBackend(libraries, httplib_client::default_http_module_paths()) {}
+
+LinuxBackend::LinuxBackend(LinuxDeviceLibraries libraries, std::vector<std::string> http_module_paths)
+    : libraries_(libraries), http_module_paths_(std::move(http_module_paths)) {}
 
 Expected<std::unique_ptr<DigitalInput>> LinuxBackend::open_input(const DigitalInputConfig& config) {
   auto input = open_gpiod_input(config);
@@ -27,11 +41,13 @@ Expected<std::unique_ptr<DigitalOutput>> LinuxBackend::open_output(const Digital
 }
 
 Expected<std::unique_ptr<CanBus>> LinuxBackend::open_can(const CanConfig& config) {
-  return socketcan::open_socketcan(config);
+  if (libraries_.open_can == nullptr) return not_linked(config.bus, "CAN", "SocketCAN, libsocketcan");
+  return libraries_.open_can(config);
 }
 
 Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusConfig& config) {
-  return libmodbus::open_libmodbus(config);
+  if (libraries_.open_modbus == nullptr) return not_linked(config.device, "Modbus", "libmodbus");
+  return libraries_.open_modbus(config);
 }
 
 Expected<std::unique_ptr<HttpClient>> LinuxBackend::open_http(const HttpConfig& config) {
@@ -39,7 +55,10 @@ Expected<std::unique_ptr<HttpClient>> LinuxBackend::open_http(const HttpConfig& 
 }
 
 Expected<std::unique_ptr<BadgeReader>> LinuxBackend::open_badge_reader(const BadgeReaderConfig& config) {
-  return rfid::open_badge_reader(config);
+  if (libraries_.open_badge_reader == nullptr) {
+    return not_linked(config.reader, "badge reader", "libevdev and termios");
+  }
+  return libraries_.open_badge_reader(config);
 }
 
 }  // namespace hubrt::hal

@@ -6,7 +6,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "hubrt/hal/libmodbus/open_libmodbus.h"
 #include "hubrt/hal/linux/backend.h"
+#include "hubrt/hal/rfid/open_badge_reader.h"
+#include "hubrt/hal/socketcan/open_socketcan.h"
 
 namespace hubrt::hal {
 namespace {
@@ -21,6 +24,24 @@ std::string own_mappings() {
   return text.str();
 }
 
+// Every device library, as the development hubd's registry links them (hubs/HubTypes.cmake).
+LinuxDeviceLibraries every_device_library() {
+  return LinuxDeviceLibraries{
+      .open_can = &socketcan::open_socketcan,
+      .open_modbus = [](const ModbusConfig& config) { return libmodbus::open_libmodbus(config); },
+      .open_badge_reader = &rfid::open_badge_reader,
+  };
+}
+
+// An output on a GPIO chip this machine does not have (its kernel has no GPIO).
+DigitalOutputConfig missing_output(const char* signal) {
+  DigitalOutputConfig config;
+  config.signal = signal;
+  config.chip = "/dev/gpiochip0";
+  config.line = 17;
+  return config;
+}
+
 HttpConfig mir_config() {
   HttpConfig config;
   config.device = "mir";
@@ -30,7 +51,7 @@ HttpConfig mir_config() {
 }
 
 TEST(LinuxBackend, MissingGpioChipIsAClearErrorForDebouncedInputs) {
-  LinuxBackend backend;
+  LinuxBackend backend(every_device_library());
   DigitalInputConfig config;
   config.signal = "dock.slot.filter_tool";
   config.chip = "pinctrl-bcm2711";
@@ -43,18 +64,14 @@ TEST(LinuxBackend, MissingGpioChipIsAClearErrorForDebouncedInputs) {
 }
 
 TEST(LinuxBackend, MissingGpioChipIsAClearErrorForOutputs) {
-  LinuxBackend backend;
-  DigitalOutputConfig config;
-  config.signal = "tool.run_forward";
-  config.chip = "/dev/gpiochip0";
-  config.line = 17;
-  auto output = backend.open_output(config);
+  LinuxBackend backend(every_device_library());
+  auto output = backend.open_output(missing_output("tool.run_forward"));
   ASSERT_FALSE(output.is_ok());
   EXPECT_THAT(output.error().message, HasSubstr("tool.run_forward: GPIO chip with path '/dev/gpiochip0'"));
 }
 
 TEST(LinuxBackend, CanGoesToSocketCan) {
-  LinuxBackend backend;
+  LinuxBackend backend(every_device_library());
   CanConfig config;
   config.bus = "tool_bus";
   config.interface = "can0";
@@ -67,7 +84,7 @@ TEST(LinuxBackend, CanGoesToSocketCan) {
 }
 
 TEST(LinuxBackend, ModbusGoesToLibmodbus) {
-  LinuxBackend backend;
+  LinuxBackend backend(every_device_library());
   ModbusConfig config;
   config.device = "lift_drive";
   config.endpoint = ModbusTcpEndpoint{"lift-drive.local", 502};  // not IPv4: refused before any I/O
@@ -75,6 +92,38 @@ TEST(LinuxBackend, ModbusGoesToLibmodbus) {
   ASSERT_FALSE(client.is_ok());
   EXPECT_EQ(client.error().code, ErrorCode::kInvalidArgument);
   EXPECT_THAT(client.error().message, HasSubstr("lift_drive"));
+}
+
+// A board's program links the device libraries of its hub type only (a Dock ECU's: GPIO): a CAN
+// bus, a Modbus drive or a badge reader in its board file is a clear error naming the device, not
+// a crash through a null opener nor a silent success.
+TEST(LinuxBackend, AKindWhoseLibraryIsNotLinkedIsAClearErrorNamingTheDevice) {
+  LinuxBackend backend(LinuxDeviceLibraries{});
+  CanConfig can;
+  can.bus = "tool_bus";
+  can.interface = "vcan0";
+  auto bus = backend.open_can(can);
+  ASSERT_FALSE(bus.is_ok());
+  EXPECT_EQ(bus.error().code, ErrorCode::kUnavailable);
+  EXPECT_THAT(bus.error().message, HasSubstr("tool_bus: this hubd is built without CAN devices"));
+  ModbusConfig modbus;
+  modbus.device = "lift_drive";
+  modbus.endpoint = ModbusTcpEndpoint{"127.0.0.1", 502};
+  auto client = backend.open_modbus(modbus);
+  ASSERT_FALSE(client.is_ok());
+  EXPECT_EQ(client.error().code, ErrorCode::kUnavailable);
+  EXPECT_THAT(client.error().message, HasSubstr("lift_drive: this hubd is built without Modbus devices"));
+  BadgeReaderConfig reader;
+  reader.reader = "operator.rfid";
+  auto badges = backend.open_badge_reader(reader);
+  ASSERT_FALSE(badges.is_ok());
+  EXPECT_EQ(badges.error().code, ErrorCode::kUnavailable);
+  EXPECT_THAT(badges.error().message,
+              HasSubstr("operator.rfid: this hubd is built without badge reader devices"));
+  // GPIO is in every program: the GPIO error, not a missing library.
+  auto line = backend.open_output(missing_output("lamp.red"));
+  ASSERT_FALSE(line.is_ok());
+  EXPECT_THAT(line.error().message, HasSubstr("lamp.red: GPIO chip with path '/dev/gpiochip0'"));
 }
 
 // cpp-httplib (and the OpenSSL initialisation Debian's build of it does) is not in a process that
@@ -85,7 +134,7 @@ TEST(LinuxBackend, HttpClientLibraryIsLoadedOnlyWhenAnHttpDeviceIsOpened) {
   if (HUBRT_HTTP_MODULE_IN_BUILD_TREE == 0) {
     GTEST_SKIP() << "cross build: hubrt-http.so is found only where a board package installs it";
   }
-  LinuxBackend backend;
+  LinuxBackend backend(every_device_library());
   EXPECT_THAT(own_mappings(), Not(HasSubstr("libcpp-httplib"))) << "linked in, not loaded on demand";
   auto client = backend.open_http(mir_config());  // connects nothing until a request is sent
   ASSERT_TRUE(client.is_ok()) << client.error().message;
@@ -101,7 +150,7 @@ TEST(LinuxBackend, HttpClientLibraryIsLoadedOnlyWhenAnHttpDeviceIsOpened) {
 }
 
 TEST(LinuxBackend, MissingHttpModuleIsAClearErrorNamingTheDeviceAndThePaths) {
-  LinuxBackend backend({"/nonexistent/lib/hubrt/hubrt-http.so"});
+  LinuxBackend backend(every_device_library(), {"/nonexistent/lib/hubrt/hubrt-http.so"});
   auto client = backend.open_http(mir_config());
   ASSERT_FALSE(client.is_ok());
   EXPECT_EQ(client.error().code, ErrorCode::kUnavailable);
@@ -112,7 +161,7 @@ TEST(LinuxBackend, MissingHttpModuleIsAClearErrorNamingTheDeviceAndThePaths) {
 
 TEST(LinuxBackend, AFileWithoutTheEntryPointIsNotTakenForTheHttpModule) {
   // libm is a shared object that loads but is no hubrt module.
-  LinuxBackend backend({"libm.so.6"});
+  LinuxBackend backend(every_device_library(), {"libm.so.6"});
   auto client = backend.open_http(mir_config());
   ASSERT_FALSE(client.is_ok());
   EXPECT_EQ(client.error().code, ErrorCode::kInternal);
