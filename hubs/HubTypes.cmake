@@ -12,6 +12,9 @@
 #   hubrt::assembly::linux_device_libraries(): the device libraries of those hub types' DEVICES.
 include_guard(GLOBAL)
 
+# The device kinds DEVICES may name, in hal::LinuxDeviceLibraries' order.
+set(HUBRT_DEVICE_KINDS can modbus badge_reader)
+
 function(hubrt_register_hub_type)
   cmake_parse_arguments(PARSE_ARGV 0 A "" "TARGET;HEADER;FUNCTION" "DEVICES")
   if(NOT A_TARGET OR NOT A_HEADER OR NOT A_FUNCTION)
@@ -20,9 +23,10 @@ function(hubrt_register_hub_type)
   endif()
   get_filename_component(name "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
   foreach(kind IN LISTS A_DEVICES)
-    if(NOT kind MATCHES "^(can|modbus|badge_reader)$")
+    if(NOT kind IN_LIST HUBRT_DEVICE_KINDS)
+      list(JOIN HUBRT_DEVICE_KINDS ", " known)
       message(FATAL_ERROR "hubrt_register_hub_type(${name}): unknown device kind '${kind}' "
-                          "(can, modbus, badge_reader; GPIO and HTTP are in every hubd)")
+                          "(${known}; GPIO and HTTP are in every hubd)")
     endif()
   endforeach()
   set_property(GLOBAL PROPERTY HUBRT_HUB_TYPE_DEVICES_${name} ${A_DEVICES})
@@ -74,7 +78,7 @@ function(hubrt_add_hub_type_registry target)
   set(device_libs "")
   set(device_includes "")
   set(device_entries "")
-  foreach(kind can modbus badge_reader)
+  foreach(kind IN LISTS HUBRT_DEVICE_KINDS)
     list(GET kind_${kind} 0 member)
     if(kind IN_LIST kinds)
       list(GET kind_${kind} 1 library)

@@ -14,12 +14,12 @@ namespace {
 
 // What opening a device of a kind the program does not link says: which device, and why a board's
 // program may lack its library (docs/board-size.md, "Device libraries per hub type").
-Error not_linked(std::string_view device, std::string_view kind, std::string_view library) {
+Error not_linked(std::string_view device, const LinuxDeviceKind& kind) {
   return make_error(ErrorCode::kUnavailable,
                     fmt::format("{}: this hubd is built without {} devices ({}): none of the hub types it "
                                 "holds opens one (a board's program links the device libraries of its hub "
                                 "type's DEVICES, hubs/<hub type>/CMakeLists.txt)",
-                                device, kind, library));
+                                device, kind.noun, kind.library));
 }
 
 }  // namespace
@@ -41,12 +41,12 @@ Expected<std::unique_ptr<DigitalOutput>> LinuxBackend::open_output(const Digital
 }
 
 Expected<std::unique_ptr<CanBus>> LinuxBackend::open_can(const CanConfig& config) {
-  if (libraries_.open_can == nullptr) return not_linked(config.bus, "CAN", "SocketCAN, libsocketcan");
+  if (libraries_.open_can == nullptr) return not_linked(config.bus, kLinuxCan);
   return libraries_.open_can(config);
 }
 
 Expected<std::unique_ptr<ModbusClient>> LinuxBackend::open_modbus(const ModbusConfig& config) {
-  if (libraries_.open_modbus == nullptr) return not_linked(config.device, "Modbus", "libmodbus");
+  if (libraries_.open_modbus == nullptr) return not_linked(config.device, kLinuxModbus);
   return libraries_.open_modbus(config);
 }
 
@@ -55,9 +55,7 @@ Expected<std::unique_ptr<HttpClient>> LinuxBackend::open_http(const HttpConfig& 
 }
 
 Expected<std::unique_ptr<BadgeReader>> LinuxBackend::open_badge_reader(const BadgeReaderConfig& config) {
-  if (libraries_.open_badge_reader == nullptr) {
-    return not_linked(config.reader, "badge reader", "libevdev and termios");
-  }
+  if (libraries_.open_badge_reader == nullptr) return not_linked(config.reader, kLinuxBadgeReader);
   return libraries_.open_badge_reader(config);
 }
 

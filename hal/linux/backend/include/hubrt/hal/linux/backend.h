@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hubrt/hal/backend.h"
@@ -27,6 +28,20 @@ struct LinuxDeviceLibraries {
 // open_gpiod_input / open_gpiod_output (gpiod_lines.h), socketcan::open_socketcan (can/) and
 // libmodbus::open_libmodbus (modbus/: a TCP drive that does not answer yet still gives a client, which
 // reconnects), or kUnavailable for a kind `libraries` lacks; see backend.h. Thread-safety: as Backend.
+// How messages name a device kind that LinuxDeviceLibraries may lack: `noun` (built without CAN
+// devices), `device` (needs CAN bus 'x'), `library` (what the program would link) and its name in
+// DEVICES. One table for LinuxBackend's errors and assembly::check_device_libraries'.
+struct LinuxDeviceKind {
+  std::string_view noun;
+  std::string_view device;
+  std::string_view library;
+  std::string_view declared_as;
+};
+inline constexpr LinuxDeviceKind kLinuxCan{"CAN", "CAN bus", "SocketCAN (libsocketcan)", "can"};
+inline constexpr LinuxDeviceKind kLinuxModbus{"Modbus", "Modbus device", "libmodbus", "modbus"};
+inline constexpr LinuxDeviceKind kLinuxBadgeReader{
+    "badge reader", "badge reader", "badge reader library (libevdev, termios)", "badge_reader"};
+
 class LinuxBackend final : public Backend {
  public:
   // The HTTP client module is looked for where httplib_client::default_http_module_paths() says.

@@ -1,15 +1,16 @@
-# Fails when the program BINARY needs libcpp-httplib (an ELF NEEDED entry): hubd loads the HTTP
-# client module hubrt-http.so only when its board opens an HTTP device (hal/linux/http), so that a
-# hub without one does not map cpp-httplib nor run the OpenSSL initialisation Debian's build of it
-# does at load time (~2 MB of resident memory in every hubd, docs/benchmarks.md). The same check
-# on the module must fail (WILL_FAIL), which shows the pattern still matches the library's name.
+# Fails when the program BINARY needs a library matching LIBRARIES (an ELF NEEDED entry). By
+# default libcpp-httplib: hubd loads the HTTP client module hubrt-http.so only when its board opens
+# an HTTP device (hal/linux/http), so that a hub without one does not map cpp-httplib nor run the
+# OpenSSL initialisation Debian's build of it does at load time (~2 MB of resident memory in every
+# hubd, docs/benchmarks.md). Each use has a control that must fail (WILL_FAIL: the module; for the
+# device libraries, hubd_board), which shows the pattern still matches the library's name.
 # The program's own shared libraries (a HUBRT_SHARED_LIBS build) are looked at with it.
-# LIBRARIES: another pattern of library names the program must not need, e.g. the device libraries
-# a board's program links only for hub types that open such devices (hubs/HubTypes.cmake, DEVICES).
-#   cmake -DBINARY=<program> -DREADELF=<readelf> [-DLIBRARIES=<regex>] -P check_no_http_library.cmake
+# LIBRARIES: another pattern, e.g. the device libraries a board's program links only for hub types
+# that open such devices (hubs/HubTypes.cmake, DEVICES).
+#   cmake -DBINARY=<program> -DREADELF=<readelf> [-DLIBRARIES=<regex>] -P check_libraries_not_needed.cmake
 if(NOT BINARY OR NOT READELF)
   message(FATAL_ERROR "usage: cmake -DBINARY=<program> -DREADELF=<readelf> [-DLIBRARIES=<regex>] "
-                      "-P check_no_http_library.cmake")
+                      "-P check_libraries_not_needed.cmake")
 endif()
 if(NOT LIBRARIES)
   set(LIBRARIES "libcpp-httplib")
