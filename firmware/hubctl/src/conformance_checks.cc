@@ -162,6 +162,10 @@ CheckResult check_first_state(std::optional<double> elapsed_s, const std::string
   return r;
 }
 
+bool command_in_force(const Observation& o, const nlohmann::ordered_json& command) {
+  return o.fresh && o.echo == command;
+}
+
 CheckResult check_fresh_before(std::span<const Observation> uncommanded) {
   const std::string title = "fresh_msg false before commands";
   if (uncommanded.empty()) return failed("fresh_before", title, "no State received before commanding");

@@ -84,6 +84,12 @@ CheckResult check_first_state(std::optional<double> elapsed_s, const std::string
 
 // --- command semantics --------------------------------------------------------------------------
 
+// Whether `command` is in force in the State `o`: echoed with fresh_msg = true. Echoing it is not
+// enough: a node keeps echoing the last command it took after its watchdog ended it, so when an
+// earlier planner's last command equals the one sent now, States the node published before the
+// new one reached it echo it already (fresh_msg false, t_plus counting from the earlier command).
+bool command_in_force(const Observation& o, const nlohmann::ordered_json& command);
+
 // fresh_before: no State claims a fresh command while nobody commands the node.
 CheckResult check_fresh_before(std::span<const Observation> uncommanded);
 

@@ -19,6 +19,11 @@ bool echoes(const Observation& o, const PreparedCommand& command) {
   return o.echo == command.json;
 }
 
+// The State in which the command took effect (conformance_checks.h: echoing it is not enough).
+bool in_force(const Observation& o, const PreparedCommand& command) {
+  return command_in_force(o, command.json);
+}
+
 }  // namespace
 
 Expected<std::unique_ptr<TargetSession>> TargetSession::open(const dds::Participant& participant,
@@ -191,22 +196,24 @@ bool TargetSession::run_semantics(std::vector<CheckResult>& out) {
   const PreparedCommand& first = commands_->probes[0];
   const PreparedCommand& second = commands_->probes[1];
   const double hold = std::max({options_.hold_s, 5 * repeat_s_, 3 * target_.period_s});
-  const auto echoed_first =
-      drive(&first, steady_seconds() + echo_wait_s_, [&](const Observation& o) { return echoes(o, first); });
+  const auto echoed_first = drive(&first, steady_seconds() + echo_wait_s_,
+                                  [&](const Observation& o) { return in_force(o, first); });
   if (!echoed_first) {
     out.push_back(failed("semantics", "command takes effect",
-                         fmt::format("{} was never echoed within {:.1f} s; last error_list: {}", first.label,
-                                     echo_wait_s_, last_errors(log()))));
+                         fmt::format("{} was never echoed with fresh_msg = true within {:.1f} s; last "
+                                     "error_list: {}",
+                                     first.label, echo_wait_s_, last_errors(log()))));
     return false;
   }
   drive(&first, log()[*echoed_first].arrival_s + hold);
   const std::size_t held_end = log().size();
   const auto echoed_second = drive(&second, steady_seconds() + echo_wait_s_,
-                                   [&](const Observation& o) { return echoes(o, second); });
+                                   [&](const Observation& o) { return in_force(o, second); });
   if (!echoed_second) {
     out.push_back(failed("semantics", "command takes effect",
-                         fmt::format("{} was never echoed within {:.1f} s; last error_list: {}", second.label,
-                                     echo_wait_s_, last_errors(log()))));
+                         fmt::format("{} was never echoed with fresh_msg = true within {:.1f} s; last "
+                                     "error_list: {}",
+                                     second.label, echo_wait_s_, last_errors(log()))));
     return false;
   }
   drive(&second, log()[*echoed_second].arrival_s + hold / 2);
@@ -253,7 +260,7 @@ bool TargetSession::ensure_commanded(std::vector<CheckResult>& out) {
   if (!log().empty() && log().back().fresh) return true;
   const PreparedCommand& probe = commands_->probes[0];
   if (drive(&probe, steady_seconds() + echo_wait_s_,
-            [&](const Observation& o) { return o.fresh && echoes(o, probe); })) {
+            [&](const Observation& o) { return in_force(o, probe); })) {
     return true;
   }
   out.push_back(failed("commands", "command takes effect",
@@ -356,7 +363,7 @@ bool TargetSession::run_reset(std::vector<CheckResult>& out) {
   };
   const auto hold = [&](const PreparedCommand& command) -> std::optional<Span> {
     const auto echoed = drive(&command, steady_seconds() + echo_wait_s_,
-                              [&](const Observation& o) { return o.fresh && echoes(o, command); });
+                              [&](const Observation& o) { return in_force(o, command); });
     if (!echoed) return std::nullopt;
     drive(&command, log()[*echoed].arrival_s + settle);
     return Span{*echoed, log().size()};

@@ -2,6 +2,9 @@
 // fails the misbehaviour it exists for.
 #include "conformance_checks.h"
 
+#include <algorithm>
+#include <span>
+
 #include <gtest/gtest.h>
 
 namespace hubrt::hubctl {
@@ -153,6 +156,32 @@ TEST(Fresh, FalseWhileCommandedFails) {
   EXPECT_EQ(check_fresh_while_commanded(states).verdict, Verdict::kPass);
   states[2].fresh = false;
   EXPECT_EQ(check_fresh_while_commanded(states).verdict, Verdict::kFail);
+}
+
+// The net tier's failure of 2026-11-28: an earlier planner's last command equalled the first probe,
+// and a State the node published before the probe reached it (watchdog tripped: fresh_msg false,
+// t_plus 10.4 s since that planner's command) arrived after the probe was sent. Taken for the
+// probe's effect, it failed fresh_while_commanded and t_plus_grows on a hub that behaved.
+TEST(CommandInForce, AStaleEchoOfTheSameCommandIsNotItsEffect) {
+  auto states = heartbeat(2, 0.1);
+  for (Observation& o : states) {
+    o.echo = command("monitor");
+    o.t_plus = 10.366 + (o.arrival_s - states.front().arrival_s);
+  }
+  auto probed = heartbeat(6, 0.1, states.back().arrival_s + 0.1, 3);
+  commanded(probed, "monitor");
+  states.insert(states.end(), probed.begin(), probed.end());
+  const auto effect = std::find_if(states.begin(), states.end(), [](const Observation& o) {
+    return command_in_force(o, command("monitor"));
+  });
+  ASSERT_EQ(effect - states.begin(), 2);
+  const std::span<const Observation> held(effect, states.end());
+  EXPECT_EQ(check_fresh_while_commanded(held).verdict, Verdict::kPass);
+  EXPECT_EQ(check_t_plus_grows(held, kDefaults).verdict, Verdict::kPass);
+  // From the stale echo on, both fail: what the conformance run reported.
+  EXPECT_EQ(check_fresh_while_commanded(states).verdict, Verdict::kFail);
+  EXPECT_EQ(check_t_plus_grows(states, kDefaults).verdict, Verdict::kFail);
+  EXPECT_FALSE(command_in_force(states[2], command("reset")));
 }
 
 TEST(TPlus, FollowingWallTimePasses) {
