@@ -10,6 +10,12 @@
 #   over the named ones only: a board's program links the hub types its board runs and no other
 #   (firmware/hubd: board/<hub type>/hubd; docs/board-size.md). It also defines
 #   hubrt::assembly::linux_device_libraries(): the device libraries of those hub types' DEVICES.
+#   With TYPES, it also defines hubrt::msgs::all_types() over the message types those hub types
+#   link (their hubrt_add_messages() targets, found through their link libraries), where a
+#   subscription's `type:` is looked up (hub_api::Subscriptions): a board's program holds neither
+#   the simulation's messages nor those of hub types it does not run. Its object comes before the
+#   libraries at link, so hubrt_msgs_all's definition (which hub_api links for every other program)
+#   is never taken into it; the board programs' tests check both (firmware/hubd).
 include_guard(GLOBAL)
 
 # The device kinds DEVICES may name, in hal::LinuxDeviceLibraries' order.
@@ -34,6 +40,39 @@ function(hubrt_register_hub_type)
   set_property(GLOBAL APPEND PROPERTY HUBRT_HUB_TYPE_TARGETS ${A_TARGET})
   set_property(GLOBAL APPEND PROPERTY HUBRT_HUB_TYPE_HEADERS ${A_HEADER})
   set_property(GLOBAL APPEND PROPERTY HUBRT_HUB_TYPE_FUNCTIONS ${A_FUNCTION})
+endfunction()
+
+# The registered message targets (hubrt_add_messages() without NO_REGISTRY) that the targets
+# `roots` link, directly or through other targets.
+function(_hubrt_message_targets_of out)
+  get_property(registered GLOBAL PROPERTY HUBRT_MESSAGE_TARGETS)
+  set(queue ${ARGN})
+  set(seen "")
+  set(found "")
+  while(queue)
+    list(POP_FRONT queue t)
+    if(NOT TARGET ${t} OR t IN_LIST seen OR t STREQUAL "hubrt_msgs_all")
+      continue()
+    endif()
+    list(APPEND seen ${t})
+    if(t IN_LIST registered)
+      list(APPEND found ${t})
+    endif()
+    get_target_property(type ${t} TYPE)
+    set(links "")
+    if(NOT type STREQUAL "INTERFACE_LIBRARY")
+      get_target_property(direct ${t} LINK_LIBRARIES)
+      if(direct)
+        list(APPEND links ${direct})
+      endif()
+    endif()
+    get_target_property(interface ${t} INTERFACE_LINK_LIBRARIES)
+    if(interface)
+      list(APPEND links ${interface})
+    endif()
+    list(APPEND queue ${links})
+  endwhile()
+  set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
 function(hubrt_add_hub_type_registry target)
@@ -121,11 +160,20 @@ ${device_entries}  };
 
 }  // namespace hubrt::assembly
 ")
+  set(sources ${source})
+  if(A_TYPES)
+    _hubrt_message_targets_of(message_targets ${targets})
+    list(JOIN wanted ", " type_names)
+    set(messages_source ${CMAKE_CURRENT_BINARY_DIR}/${target}_messages.cc)
+    hubrt_messages_write_registry_source(${messages_source} "the message targets hub type(s) ${type_names} link"
+                                         ${message_targets})
+    list(APPEND sources ${messages_source})
+  endif()
   # An object library: the registry's object goes into the program itself, so the libraries that
   # call hub_types() (the composition root) find it wherever the linker meets them.
-  add_library(${target} OBJECT ${source})
+  add_library(${target} OBJECT ${sources})
   # The declaration of hub_types() is the composition root's (hubrt/assembly/hub_types.h); the
   # registry needs only that header, not the library (which itself uses the registry).
   target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/firmware/assembly/include)
-  target_link_libraries(${target} PUBLIC ${targets} hubrt_hal_linux ${device_libs})
+  target_link_libraries(${target} PUBLIC ${targets} hubrt_hal_linux ${device_libs} ${message_targets})
 endfunction()

@@ -1,5 +1,10 @@
 #include "hubrt/hub_api/subscriptions.h"
 
+#include <string>
+#include <vector>
+
+#include <fmt/ranges.h>
+
 #include "hubrt/msgs/all_types.h"
 
 namespace hubrt::hub_api {
@@ -44,11 +49,17 @@ Expected<Subscriptions::Found> Subscriptions::find(const config::HubConfig& conf
                     "subscriptions: with its topic and type",
                     config.file, name, expected.ros_name));
   }
-  const msgs::TypeInfo* type = msgs::all_types().find(sub->type);
+  // The types this program holds: a board's program only those its hub types link (hubs/HubTypes.cmake).
+  const msgs::TypeRegistry& types = msgs::all_types();
+  const msgs::TypeInfo* type = types.find(sub->type);
   if (type == nullptr || type->descriptor == nullptr) {
+    const std::vector<std::string> close = types.suggest(sub->type);
     return make_error(
         ErrorCode::kInvalidArgument,
-        fmt::format("{}: subscriptions.{}.type: unknown message type '{}'", config.file, name, sub->type));
+        fmt::format("{}: subscriptions.{}.type: unknown message type '{}'{} (this hubd holds the "
+                    "message types of its hub types and their inputs)",
+                    config.file, name, sub->type,
+                    close.empty() ? "" : fmt::format("; did you mean {}?", fmt::join(close, ", "))));
   }
   Found found{sub->name, sub->topic, sub->timeout, type->descriptor, 0};
   if (sub->field.empty()) {

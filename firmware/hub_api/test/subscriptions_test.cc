@@ -2,6 +2,7 @@
 
 #include <thread>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "hubrt/dds/writer.h"
@@ -15,6 +16,9 @@ namespace {
 
 using dock_ecu::DockState;
 using std::chrono::milliseconds;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
 
 config::HubConfig config_with(const std::string& subscriptions_yaml) {
   auto root = config::YamlMap::load_string(
@@ -88,13 +92,20 @@ TEST_F(SubscriptionsTest, WrongOrMissingConfigurationIsRefusedWithTheFile) {
   const auto config = config_with(
       "  dock: {topic: /dock_ecu/dock/state, type: hub_msgs/msg/DockCommand}\n"
       "  other: {topic: /x/state, type: hub_msgs/msg/Nothing}\n"
-      "  hub: {topic: /x/state, type: hub_msgs/msg/DockState, field: dock}\n");
+      "  hub: {topic: /x/state, type: hub_msgs/msg/DockState, field: dock}\n"
+      "  typo: {topic: /x/state, type: hub_msgs/msg/DockStat}\n");
   Subscriptions subscriptions(config, *participant_);
   EXPECT_EQ(subscriptions.get<DockState>("dock").error().message,
             "tool.yaml: subscriptions.dock: input 'dock' must be a hub_msgs/msg/DockState, not "
             "hub_msgs/msg/DockCommand");
-  EXPECT_EQ(subscriptions.get<DockState>("other").error().message,
-            "tool.yaml: subscriptions.other.type: unknown message type 'hub_msgs/msg/Nothing'");
+  // Which types a program knows depends on what it links (a board program: its hub type's), so
+  // the message says so; a near miss is named.
+  EXPECT_THAT(
+      subscriptions.get<DockState>("other").error().message,
+      AllOf(StartsWith("tool.yaml: subscriptions.other.type: unknown message type 'hub_msgs/msg/Nothing'"),
+            HasSubstr("(this hubd holds the message types of its hub types and their inputs)")));
+  EXPECT_THAT(subscriptions.get<DockState>("typo").error().message,
+              HasSubstr("unknown message type 'hub_msgs/msg/DockStat'; did you mean hub_msgs/msg/DockState"));
   EXPECT_EQ(subscriptions.get<DockState>("hub").error().message,
             "tool.yaml: subscriptions.hub.field: hub_msgs/msg/DockState has no field 'dock' of type "
             "hub_msgs/msg/DockState");
