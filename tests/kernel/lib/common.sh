@@ -53,13 +53,16 @@ missing_packages() {
 # apt_download DIR PKG[=VERSION]: downloads one .deb from Debian's archive into DIR (never installs).
 # Retries once after 'apt-get update' because stale package lists name versions the archive dropped.
 apt_download() {
+  try_apt_download "$@" ||
+    { tail -n 20 "$KT_CACHE/logs/download.log" >&2; die "apt-get download $2 failed"; }
+}
+# try_apt_download DIR PKG[=VERSION]: as apt_download, but returns non-zero instead of stopping.
+try_apt_download() {
   local dir=$1 spec=$2
   mkdir -p "$dir"
-  if ! (cd "$dir" && "${APT[@]}" download "$spec") >"$KT_CACHE/logs/download.log" 2>&1; then
-    apt_update_once
-    (cd "$dir" && "${APT[@]}" download "$spec") >"$KT_CACHE/logs/download.log" 2>&1 ||
-      { tail -n 20 "$KT_CACHE/logs/download.log" >&2; die "apt-get download $spec failed"; }
-  fi
+  (cd "$dir" && "${APT[@]}" download "$spec") >"$KT_CACHE/logs/download.log" 2>&1 && return 0
+  apt_update_once
+  (cd "$dir" && "${APT[@]}" download "$spec") >"$KT_CACHE/logs/download.log" 2>&1
 }
 
 # The build steps write into the shared cache: one runner at a time (booting runs unlocked).

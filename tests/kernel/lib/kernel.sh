@@ -32,11 +32,15 @@ deb_file() { find "$1" -maxdepth 1 -name "$2_*.deb" -print -quit; }
 
 # fetch_extract PKG[=VER] DEST: download one package and unpack its files under DEST.
 fetch_extract() {
-  local spec=$1 dest=$2 debs=$KT_CACHE/debs
-  apt_download "$debs" "$spec"
-  local deb
-  deb=$(deb_file "$debs" "${spec%%=*}")
-  [ -n "$deb" ] || die "apt-get download $spec produced no .deb"
+  local spec=$1 dest=$2
+  apt_download "$KT_CACHE/debs" "$spec"
+  extract_downloaded "${spec%%=*}" "$dest"
+}
+# extract_downloaded PKG DEST: unpacks the .deb of PKG that a download left in the cache's debs/.
+extract_downloaded() {
+  local pkg=$1 dest=$2 deb
+  deb=$(deb_file "$KT_CACHE/debs" "$pkg")
+  [ -n "$deb" ] || die "apt-get download $pkg produced no .deb"
   mkdir -p "$dest"
   dpkg -x "$deb" "$dest"
   rm -f "$deb"   # the extracted tree is what the cache keeps
@@ -91,9 +95,11 @@ kernel_headers() {
   local p
   for p in "linux-headers-$KVER" $(apt-cache depends "linux-headers-$KVER" |
     awk '/Depends: linux-(headers|kbuild)-/ { print $2 }'); do
-    # same upload as the image where it exists (kbuild may be newer: it only needs to be >=)
-    if apt-cache show "$p=$KPKGVER" >/dev/null 2>&1; then
-      fetch_extract "$p=$KPKGVER" "$KDIR/headers"
+    # Same upload as the image where it exists (kbuild may be newer: it only needs to be >=). The
+    # package lists may still name it after the archive replaced it (2026-11-28: linux-kbuild-6.1
+    # 6.1.192-2 listed, 6.1.192-3 in the archive, the image still 6.1.192-2): then the archive's.
+    if apt-cache show "$p=$KPKGVER" >/dev/null 2>&1 && try_apt_download "$KT_CACHE/debs" "$p=$KPKGVER"; then
+      extract_downloaded "$p" "$KDIR/headers"
     else
       fetch_extract "$p" "$KDIR/headers"
     fi
