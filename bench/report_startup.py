@@ -9,18 +9,24 @@ def ms(value, digits=3):
     return f"{value:.{digits}f} ms"
 
 
+def rate_rows(entry, hub_label, ratio_label):
+    """The table rows of one rate's runs: the raw writer, the hub (as `hub_label`), their ratio."""
+    rows = []
+    for source, label in (("raw", "raw Cyclone writer"), ("hub", hub_label)):
+        d = entry[source]
+        f = d["first_state_ms"]
+        rows.append(f"| {entry['rate_hz']:g} Hz | {label} | {f['n']} | {ms(f['p50'], 1)} | {ms(f['min'], 1)} | "
+                    f"{ms(f['max'], 1)} | {d['runs_that_got_seq_1']} of {f['n']} |")
+    rows.append(f"| {entry['rate_hz']:g} Hz | {ratio_label} | | {entry['ratio_p50']:.2f}x | | | |")
+    return rows
+
+
 def no_twin_rows(no_twin):
     """Table rows of the 1 kHz run without the start-up twin check (hubd --twin-check-ms=0), and a sentence."""
     entry = next((e for e in (no_twin or {}).get("rates", []) if e["rate_hz"] == 1000), None)
     if entry is None:
         return [], ""
-    rows = []
-    for source, label in (("raw", "raw Cyclone writer"), ("hub", "hubd --twin-check-ms=0 (no start-up twin check)")):
-        d = entry[source]
-        f = d["first_state_ms"]
-        rows.append(f"| 1000 Hz | {label} | {f['n']} | {ms(f['p50'], 1)} | {ms(f['min'], 1)} | {ms(f['max'], 1)} | "
-                    f"{d['runs_that_got_seq_1']} of {f['n']} |")
-    rows.append(f"| 1000 Hz | ratio hub without the twin check / raw | | {entry['ratio_p50']:.2f}x | | | |")
+    rows = rate_rows(entry, "hubd --twin-check-ms=0 (no start-up twin check)", "ratio hub without the twin check / raw")
     h, r = entry["hub"]["first_state_ms"], entry["raw"]["first_state_ms"]
     sentence = (f" Measured in the same bench without the start-up twin check (hubd --twin-check-ms=0, another "
                 f"1 kHz run of its own): hubd p50 {ms(h['p50'], 1)} against {ms(r['p50'], 1)} for the raw writer "
@@ -51,12 +57,7 @@ def startup_section(report, startup, no_twin=None):
         "|---|---|---|---|---|---|---|",
     ]
     for entry in startup["rates"]:
-        for source, label in (("raw", "raw Cyclone writer"), ("hub", "hubd")):
-            d = entry[source]
-            f = d["first_state_ms"]
-            lines.append(f"| {entry['rate_hz']:g} Hz | {label} | {f['n']} | {ms(f['p50'], 1)} | {ms(f['min'], 1)} | "
-                         f"{ms(f['max'], 1)} | {d['runs_that_got_seq_1']} of {f['n']} |")
-        lines.append(f"| {entry['rate_hz']:g} Hz | ratio hub / raw | | {entry['ratio_p50']:.2f}x | | | |")
+        lines += rate_rows(entry, "hubd", "ratio hub / raw")
     no_twin_table, no_twin_sentence = no_twin_rows(no_twin)
     lines += no_twin_table
     lines += ["", f"DESIGN.md section 8 reference: ROS 1 roscpp {ROS1_FIRST_STATE_MS} ms from launch to first state."]
