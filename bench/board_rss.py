@@ -50,7 +50,8 @@ def measure(arch, seconds, jobs):
         s = entry[source]
         if s.get("guest_rss_mb", -1) < 0:
             raise RuntimeError(f"{source}: no guest memory figure (was it run under {QEMU[arch]}?)")
-        processes[source] = {"process_rss_mb": s["rss_mb"], "guest_rss_mb": s["guest_rss_mb"]}
+        processes[source] = {"process_rss_mb": s["rss_mb"], "guest_rss_mb": s["guest_rss_mb"],
+                             "guest_anon_mb": s.get("guest_anon_mb", -1)}
     return {"arch": arch, "prepared": True, "emulator": QEMU[arch], "seconds": seconds, **processes}
 
 

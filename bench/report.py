@@ -203,7 +203,8 @@ def heartbeat_section(report, heartbeat):
         "but not received. CPU from /proc/<pid>/task/*/schedstat over the window; the ratio row's CPU is "
         "measured after the window in turns (each process alone with its subscriber while the other is "
         "stopped, the median of the rounds' ratios: bench/support/cpu_turns.h), RSS from "
-        "/proc/<pid>/status at its end. Picture: [benchmarks-jitter.svg](benchmarks-jitter.svg).",
+        "/proc/<pid>/status at its end (in brackets: of it anonymous memory, RssAnon). Picture: "
+        "[benchmarks-jitter.svg](benchmarks-jitter.svg).",
         "",
         "| rate | source | States / expected | stamp jitter p50 / p99 / max | arrival jitter p50 / p99 / max | "
         "drift | missed periods | seq gaps | CPU (% of a core) | RSS | threads |",
@@ -218,7 +219,7 @@ def heartbeat_section(report, heartbeat):
                 f"{sj['p50']:.3f} / {sj['p99']:.3f} / {sj['max']:.3f} ms | "
                 f"{aj['p50']:.3f} / {aj['p99']:.3f} / {aj['max']:.3f} ms | {s.get('drift_ppm', 0):.1f} ppm | "
                 f"{s.get('missed_periods', 0):.0f} | {s.get('seq_gaps', 0):.0f} | {s['cpu_pct']:.2f} % | "
-                f"{s['rss_mb']:.1f} MB | {s['threads']} |")
+                f"{s['rss_mb']:.1f} MB{report_rss.anon_of(s)} | {s['threads']} |")
         lines.append(
             f"| {entry['rate_hz']:g} Hz | ratio hub / bare | | p99 {entry['ratio_stamp_p99']:.2f}x, max "
             f"{entry['ratio_stamp_max']:.2f}x | p99 {entry['ratio_arrival_p99']:.2f}x | | | | "
@@ -269,11 +270,13 @@ def heartbeat_section(report, heartbeat):
                    "publishes /diagnostics at 1 Hz and runs the simulation bridge of the fake backend (CPU from "
                    "every thread's /proc/<pid>/task/*/schedstat run time, in nanoseconds).")
         cpu_ratio_aims(report, heartbeat)
-        rss_why = report_rss.rss_why(rss, raw_rss)
+        parts = report_rss.split(at100["hub"], at100["raw"])
+        rss_why = report_rss.rss_why(rss, raw_rss, parts=parts)
         report.aim("<= 9 MB RSS per hub at 100 Hz", f"{rss:.1f} MB (bare Cyclone writer: {raw_rss:.1f} MB)",
                    rss <= 9.0, rss_why)
         report.aim("RSS <= a bare Cyclone writer of the same State (100 Hz, same run)",
-                   f"{rss / raw_rss:.2f}x ({rss:.1f} vs {raw_rss:.1f} MB)", rss <= raw_rss, rss_why)
+                   f"{rss / raw_rss:.2f}x ({rss:.1f} vs {raw_rss:.1f} MB{report_rss.split_text(parts)})",
+                   rss <= raw_rss, rss_why)
 
 
 def picture(results, path):

@@ -4,9 +4,9 @@ and the board build's RSS row (hubrt_bench_heartbeat --board-build)."""
 # Where hubd's resident set goes beyond the bare writer's, by /proc/<pid>/smaps of both side by side
 # (x86, 100 Hz, Debian 12's libraries; docs: bench/README.md, "Memory").
 WHERE_IT_GOES = (
-    "The rest, by /proc/<pid>/smaps of both side by side (2026-11-28, x86, the Dock ECU's board program built "
-    "with the board packages' flags, as bench/run measures it: build/host-board): hubd's own code, 0.66 MB "
-    "resident against the bare writer program's 0.25 MB (file pages of its 0.79 MB of -Os text, which the kernel "
+    "Where the difference goes, by /proc/<pid>/smaps of both side by side (2026-11-28, x86, the Dock ECU's board "
+    "program built with the board packages' flags, as bench/run measures it: build/host-board): hubd's own code, "
+    "0.66 MB resident against the bare writer program's 0.25 MB (file pages of its 0.79 MB of -Os text, which the kernel "
     "maps around every fault, most of them start-up code; the development build's -O2 hubd, which also holds "
     "the simulators, 2.3 MB); yaml-cpp (0.32 MB), which the bare writer does not load; libgpiod (0.04 MB: a "
     "board's program links the device libraries of its hub type's kinds only, hubs/HubTypes.cmake DEVICES; "
@@ -23,9 +23,41 @@ WHERE_IT_GOES = (
     "pages) in every hubd, is loaded only by a hub with an HTTP device (the module hubrt-http.so).")
 
 
-def rss_why(rss, raw_rss, build="development"):
+def anon_of(sample):
+    """' (1.4 anonymous)' for a table cell, or '' for results without the figure."""
+    return f" ({sample['anon_mb']:.1f} anonymous)" if sample.get("anon_mb", -1) >= 0 else ""
+
+
+def split(hub, raw, rss_key="rss_mb", anon_key="anon_mb"):
+    """The hub's resident memory beyond the bare writer's, split into file pages and anonymous memory
+    (bench/support/guest_memory.h); None when a figure is missing (results of an older bench)."""
+    if hub.get(anon_key, -1) < 0 or raw.get(anon_key, -1) < 0:
+        return None
+    anon = hub[anon_key] - raw[anon_key]
+    return {"file": (hub[rss_key] - hub[anon_key]) - (raw[rss_key] - raw[anon_key]), "anon": anon}
+
+
+def split_text(parts):
+    """'; beyond the writer: +0.86 MB file pages, +0.21 MB anonymous', or '' without the figures."""
+    if parts is None:
+        return ""
+    return f"; beyond the writer: {parts['file']:+.2f} MB file pages, {parts['anon']:+.2f} MB anonymous"
+
+
+def split_why(parts):
+    if parts is None:
+        return ""
+    return (f"Measured in the same run: {parts['file']:+.2f} MB of the difference are pages of files (code and "
+            f"read-only data of the program and the libraries it loads, which the kernel drops under memory "
+            f"pressure and reads again) and {parts['anon']:+.2f} MB anonymous memory (heap, stacks, written data: "
+            "RssAnon, or the Anonymous lines of the guest's mappings under qemu-user), which only swap could take "
+            "back. ")
+
+
+def rss_why(rss, raw_rss, build="development", parts=None):
     return (f"{rss:.1f} MB ({build} build), of which a bare Cyclone participant with one writer already takes "
-            f"{raw_rss:.1f} MB here (ENVIRONMENT.md: about 7.5 MB per participant). " + WHERE_IT_GOES)
+            f"{raw_rss:.1f} MB here (ENVIRONMENT.md: about 7.5 MB per participant). " + split_why(parts) +
+            WHERE_IT_GOES)
 
 
 def board_rss_aims(report, heartbeat_board):
@@ -41,12 +73,13 @@ def board_rss_aims(report, heartbeat_board):
     program = at100.get("hubd_program", "")
     build = ("board build: the packages' -Os, --gc-sections flags, build/host-board" if "/host-board/" in program
              else "board build, with the bench build's flags")
-    why = rss_why(rss, raw_rss, build)
+    parts = split(at100["hub"], at100["raw"])
+    why = rss_why(rss, raw_rss, build, parts)
     report.aim("<= 9 MB RSS per hub at 100 Hz (board build, rpi4-dock-ecu)",
                f"{rss:.1f} MB (bare Cyclone writer: {raw_rss:.1f} MB)", rss <= 9.0, why,
                alternative=f"bare Cyclone writer {raw_rss:.1f} MB")
     report.aim("RSS <= a bare Cyclone writer of the same State (board build, 100 Hz, same run)",
-               f"{rss / raw_rss:.2f}x ({rss:.1f} vs {raw_rss:.1f} MB)", rss <= raw_rss, why,
+               f"{rss / raw_rss:.2f}x ({rss:.1f} vs {raw_rss:.1f} MB{split_text(parts)})", rss <= raw_rss, why,
                alternative=f"bare Cyclone writer {raw_rss:.1f} MB")
     # What the packages install, without simulators: its CPU beside the bare loop of the same run too.
     cpu, raw_cpu, ratio = at100["hub"]["cpu_pct"], at100["raw"]["cpu_pct"], at100.get("ratio_cpu", 0.0)
@@ -83,27 +116,30 @@ def target_rss_aims(report, rss_boards):
         "(bench/support/guest_memory.h): the program's files from the sysroot, its heap, its threads' "
         "stacks. That is the figure judged; the process's is shown for the reason it is not.",
         "",
-        "| target | board hubd (guest) | bare writer (guest) | ratio | qemu processes' RSS (hub / bare) |",
-        "|---|---|---|---|---|",
+        "| target | board hubd (guest) | bare writer (guest) | ratio | of it anonymous (hub / bare) | "
+        "qemu processes' RSS (hub / bare) |",
+        "|---|---|---|---|---|---|",
     ]
     for target in rss_boards["targets"]:
         arch = target["arch"]
         if not target.get("prepared"):
-            lines.append(f"| {arch} | not prepared (no sysroot: `toolchain/prepare-target {arch}`) | | | |")
+            lines.append(f"| {arch} | not prepared (no sysroot: `toolchain/prepare-target {arch}`) | | | | |")
             continue
         if "hub" not in target:
-            lines.append(f"| {arch} | failed: {target.get('error', '?')} | | | |")
+            lines.append(f"| {arch} | failed: {target.get('error', '?')} | | | | |")
             report.aim(aim.format(arch=arch), "failed", False, f"bench/board_rss.py: {target.get('error', '?')}")
             continue
         hub, raw = target["hub"]["guest_rss_mb"], target["raw"]["guest_rss_mb"]
-        lines.append(f"| {arch} | **{hub:.2f} MB** | {raw:.2f} MB | {hub / raw:.2f}x | "
+        parts = split(target["hub"], target["raw"], "guest_rss_mb", "guest_anon_mb")
+        anon = (f"{target['hub']['guest_anon_mb']:.2f} / {target['raw']['guest_anon_mb']:.2f} MB" if parts else "-")
+        lines.append(f"| {arch} | **{hub:.2f} MB** | {raw:.2f} MB | {hub / raw:.2f}x | {anon} | "
                      f"{target['hub']['process_rss_mb']:.1f} / {target['raw']['process_rss_mb']:.1f} MB |")
         why = (f"on {arch} the board hubd holds {hub:.2f} MB against the bare writer's {raw:.2f} MB (guest memory "
-               "under qemu-user). Beyond the writer: yaml-cpp, hubd's own code (spdlog compiled in), libgpiod and "
-               "its nodes' storage (the x86 breakdown above).")
+               "under qemu-user). " + split_why(parts) + "Beyond the writer: yaml-cpp, hubd's own code (spdlog "
+               "compiled in), libgpiod and its nodes' storage (the x86 breakdown above).")
         report.aim(aim.format(arch=arch), f"{hub:.2f} MB (bare Cyclone writer {raw:.2f} MB)", hub <= 9.0, why,
                    alternative=f"bare Cyclone writer {raw:.2f} MB")
         report.aim(f"RSS <= a bare Cyclone writer of the same State ({arch} board build, guest memory, same run)",
-                   f"{hub / raw:.2f}x ({hub:.2f} vs {raw:.2f} MB)", hub <= raw, why,
+                   f"{hub / raw:.2f}x ({hub:.2f} vs {raw:.2f} MB{split_text(parts)})", hub <= raw, why,
                    alternative=f"bare Cyclone writer {raw:.2f} MB")
     report.sections.append("\n".join(lines) + "\n")

@@ -98,9 +98,13 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
   }
   out["cpu_pct"] = cpu_percent(before, after, cpu_window_s);
   out["rss_mb"] = after.rss_mb;
+  out["anon_mb"] = after.anon_mb;
   out["hwm_mb"] = after.hwm_mb;
   // Under qemu-user (bench/board_rss.py): the guest program's own share of the process's RSS.
-  if (after.guest_rss_mb >= 0) out["guest_rss_mb"] = after.guest_rss_mb;
+  if (after.guest_rss_mb >= 0) {
+    out["guest_rss_mb"] = after.guest_rss_mb;
+    out["guest_anon_mb"] = after.guest_anon_mb;
+  }
   out["threads"] = after.threads;
   for (std::size_t i = 1; i < s.stamps.size(); ++i) {
     periods << fmt::format("{},{},stamp,{:.6f}\n", rate, s.name, (s.stamps[i] - s.stamps[i - 1]) * 1e3);

@@ -18,7 +18,7 @@ namespace {
 struct Mapping {
   std::uint64_t start = 0;
   std::string path;  // empty for anonymous memory
-  double rss_kb = 0;
+  Resident kb;
 };
 
 // A whole field as a number in `base`, nullopt when it is not one.
@@ -30,7 +30,7 @@ std::optional<std::uint64_t> number(std::string_view text, int base) {
 }
 
 // The mappings of an smaps text: a header line "start-end perms offset dev inode [path]" followed by
-// "Key: value kB" lines, of which Rss is the one kept.
+// "Key: value kB" lines, of which Rss and Anonymous are the ones kept.
 std::vector<Mapping> parse_smaps(std::string_view smaps) {
   std::vector<Mapping> out;
   std::istringstream in{std::string(smaps)};
@@ -39,11 +39,11 @@ std::vector<Mapping> parse_smaps(std::string_view smaps) {
     std::istringstream fields(line);
     std::string first;
     fields >> first;
-    if (first == "Rss:") {
+    if (first == "Rss:" || first == "Anonymous:") {
       std::string kb;
       fields >> kb;
       if (const auto value = number(kb, 10); value && !out.empty())
-        out.back().rss_kb += static_cast<double>(*value);
+        (first == "Rss:" ? out.back().kb.rss : out.back().kb.anon) += static_cast<double>(*value);
       continue;
     }
     const auto dash = first.find('-');
@@ -54,28 +54,30 @@ std::vector<Mapping> parse_smaps(std::string_view smaps) {
     std::string perms, offset, device, inode, path;
     fields >> perms >> offset >> device >> inode;
     std::getline(fields >> std::ws, path);
-    out.push_back(Mapping{*start, path, 0});
+    out.push_back(Mapping{*start, path, {}});
   }
   return out;
 }
 
 }  // namespace
 
-std::optional<double> guest_rss_kb(std::string_view smaps, const std::string& emulator_path) {
+std::optional<Resident> guest_rss_kb(std::string_view smaps, const std::string& emulator_path) {
   const std::vector<Mapping> mappings = parse_smaps(smaps);
   std::uint64_t boundary = std::numeric_limits<std::uint64_t>::max();
   for (const Mapping& m : mappings) {
     if (m.path == "[heap]" || m.path == emulator_path) boundary = std::min(boundary, m.start);
   }
   if (boundary == std::numeric_limits<std::uint64_t>::max()) return std::nullopt;
-  double kb = 0;
+  Resident kb;
   for (const Mapping& m : mappings) {
-    if (m.start < boundary) kb += m.rss_kb;
+    if (m.start >= boundary) continue;
+    kb.rss += m.kb.rss;
+    kb.anon += m.kb.anon;
   }
   return kb;
 }
 
-std::optional<double> emulated_guest_rss_mb(pid_t pid) {
+std::optional<Resident> emulated_guest_rss_mb(pid_t pid) {
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink(fmt::format("/proc/{}/exe", pid), ec);
   if (ec || exe.filename().string().rfind("qemu-", 0) != 0) return std::nullopt;
@@ -83,7 +85,7 @@ std::optional<double> emulated_guest_rss_mb(pid_t pid) {
   const std::string smaps((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   const auto kb = guest_rss_kb(smaps, exe.string());
   if (!kb) return std::nullopt;
-  return *kb / 1024.0;
+  return Resident{kb->rss / 1024.0, kb->anon / 1024.0};
 }
 
 }  // namespace hubrt::bench

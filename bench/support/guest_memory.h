@@ -18,12 +18,21 @@
 
 namespace hubrt::bench {
 
-// The Rss (kB) of the guest's mappings in a /proc/<pid>/smaps text of an emulator whose executable
-// is `emulator_path`; nullopt when neither the executable nor [heap] is among the mappings.
-std::optional<double> guest_rss_kb(std::string_view smaps, const std::string& emulator_path);
+// Resident memory, and how much of it is anonymous: pages no file backs (heap, stacks, the written
+// copies of a library's data), which only swap could take back, unlike the pages of a program's
+// code and read-only data, which the kernel drops under pressure and reads again from the file.
+struct Resident {
+  double rss = 0;
+  double anon = 0;
+};
+
+// The Rss and Anonymous (kB) of the guest's mappings in a /proc/<pid>/smaps text of an emulator
+// whose executable is `emulator_path`; nullopt when neither the executable nor [heap] is among the
+// mappings.
+std::optional<Resident> guest_rss_kb(std::string_view smaps, const std::string& emulator_path);
 
 // For a running process: its guest memory in MB when its executable is qemu-user ("qemu-*"),
 // nullopt otherwise (a native process, or /proc unreadable).
-std::optional<double> emulated_guest_rss_mb(pid_t pid);
+std::optional<Resident> emulated_guest_rss_mb(pid_t pid);
 
 }  // namespace hubrt::bench

@@ -67,10 +67,14 @@ Expected<ProcSample> read_proc(pid_t pid) {
     double value = 0;
     fields >> key >> value;
     if (key == "VmRSS:") sample.rss_mb = value / 1024.0;
+    if (key == "RssAnon:") sample.anon_mb = value / 1024.0;
     if (key == "VmHWM:") sample.hwm_mb = value / 1024.0;
     if (key == "Threads:") sample.threads = static_cast<int>(value);
   }
-  sample.guest_rss_mb = emulated_guest_rss_mb(pid).value_or(-1);
+  if (const auto guest = emulated_guest_rss_mb(pid)) {
+    sample.guest_rss_mb = guest->rss;
+    sample.guest_anon_mb = guest->anon;
+  }
   return sample;
 }
 

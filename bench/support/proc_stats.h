@@ -1,5 +1,5 @@
 // CPU time and memory of a process, read from /proc/<pid>/task/*/schedstat (or /proc/<pid>/stat)
-// and /proc/<pid>/status.
+// and /proc/<pid>/status (under qemu-user also /proc/<pid>/smaps: guest_memory.h).
 #pragma once
 
 #include <sys/types.h>
@@ -9,13 +9,15 @@
 namespace hubrt::bench {
 
 struct ProcSample {
-  double cpu_s = 0;   // time its threads ran so far (user + system)
-  double rss_mb = 0;  // resident set now (VmRSS)
-  double hwm_mb = 0;  // peak resident set (VmHWM)
+  double cpu_s = 0;    // time its threads ran so far (user + system)
+  double rss_mb = 0;   // resident set now (VmRSS)
+  double anon_mb = 0;  // of it, anonymous pages (RssAnon; guest_memory.h says why it matters)
+  double hwm_mb = 0;   // peak resident set (VmHWM)
   int threads = 0;
   // Under qemu-user: the guest program's own resident memory, without qemu's (guest_memory.h);
   // negative for a native process.
   double guest_rss_mb = -1;
+  double guest_anon_mb = -1;
 };
 
 // Errors: kNotFound when the process is gone; kIo when the files do not parse.

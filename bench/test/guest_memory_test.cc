@@ -19,21 +19,31 @@ constexpr const char* kSmaps =
     "Size:                716 kB\n"
     "Rss:                 640 kB\n"
     "Pss:                 640 kB\n"
+    "Anonymous:             0 kB\n"
     "55000d4000-5500176000 rw-p 00000000 00:00 0 \n"
     "Rss:                 524 kB\n"
+    "Anonymous:           524 kB\n"
     "5502fa0000-55030c3000 r--p 00000000 fe:01 456 /sysroot/usr/lib/aarch64-linux-gnu/libddsc.so.0.10.2\n"
     "Rss:                1024 kB\n"
+    "Anonymous:             0 kB\n"
+    "5503000000-5503002000 rw-p 00160000 fe:01 456 /sysroot/usr/lib/aarch64-linux-gnu/libddsc.so.0.10.2\n"
+    "Rss:                   8 kB\n"
+    "Anonymous:             4 kB\n"
     "555567106000-555567594000 rw-p 00000000 00:00 0                          [heap]\n"
     "Rss:                4556 kB\n"
+    "Anonymous:          4556 kB\n"
     "7fc05c000000-7fc063fff000 rwxp 00000000 00:00 0 \n"
     "Rss:                8192 kB\n"
+    "Anonymous:          8192 kB\n"
     "7fc069800000-7fc069a28000 r--p 00000000 fe:01 789 /usr/bin/qemu-aarch64-static\n"
     "Rss:                2208 kB\n";
 
 TEST(GuestMemory, CountsTheMappingsBelowTheEmulatorsOwn) {
   const auto kb = guest_rss_kb(kSmaps, kEmulator);
   ASSERT_TRUE(kb.has_value());
-  EXPECT_DOUBLE_EQ(*kb, 640 + 524 + 1024);
+  EXPECT_DOUBLE_EQ(kb->rss, 640 + 524 + 1024 + 8);
+  // Of it anonymous: the guest's own anonymous mapping and the page of the library's data it wrote.
+  EXPECT_DOUBLE_EQ(kb->anon, 524 + 4);
 }
 
 TEST(GuestMemory, TheLowestOfHeapAndExecutableIsTheBoundary) {
@@ -45,7 +55,8 @@ TEST(GuestMemory, TheLowestOfHeapAndExecutableIsTheBoundary) {
   without_heap.erase(heap, next - heap);
   const auto kb = guest_rss_kb(without_heap, kEmulator);
   ASSERT_TRUE(kb.has_value());
-  EXPECT_DOUBLE_EQ(*kb, 640 + 524 + 1024 + 8192);
+  EXPECT_DOUBLE_EQ(kb->rss, 640 + 524 + 1024 + 8 + 8192);
+  EXPECT_DOUBLE_EQ(kb->anon, 524 + 4 + 8192);
 }
 
 TEST(GuestMemory, NotAnEmulatorsMapsIsNoFigure) {
