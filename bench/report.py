@@ -155,6 +155,13 @@ def cycle_section(report, cycle):
                f"{per_write:.2f} times per write, ddsi_serdata_default.c).")
 
 
+def stalls_of(sample):
+    """', not woken in 3 periods (their States written late)' for the bare loop, whose catch-up bursts
+    leave no period short of a State; '' when it woke in every period or the figure is missing."""
+    stalls = sample.get("periods_without_wakeup", 0)
+    return f", not woken in {stalls:.0f} periods (their States written late)" if stalls > 0 else ""
+
+
 def cpu_ratio_aims(report, heartbeat):
     """Issue 16, point 4: a hub's CPU against the bare loop's, both measured in the same run."""
     for entry in heartbeat["rates"]:
@@ -252,7 +259,7 @@ def heartbeat_section(report, heartbeat):
                ", ".join(f"{e['rate_hz']:g} Hz: {e['hub']['states']} of {e['hub']['expected_states']}, "
                          f"{e['hub'].get('missed_periods', 0):.0f} periods missed, "
                          f"{e['hub'].get('seq_gaps', 0):.0f} lost (bare loop: {e['raw'].get('missed_periods', 0):.0f}"
-                         " missed)" for e in heartbeat["rates"]),
+                         f" missed{stalls_of(e['raw'])})" for e in heartbeat["rates"]),
                complete,
                "the hub skipped periods: when a cycle runs later than a whole period (the process was not "
                "scheduled in time on this loaded 2-core machine) the runner counts an overrun and goes on with "
@@ -361,7 +368,7 @@ def realtime_section(report, heartbeat, realtime):
                f"{rt['hub']['stamp_jitter_ms']['max']:.3f} ms", missed == 0,
                f"hubd under SCHED_FIFO still missed {missed:.0f} periods, its longest gap "
                f"{rt['hub']['stamp_jitter_ms']['max']:.1f} ms; the bare loop beside it missed "
-               f"{rt['raw'].get('missed_periods', 0):.0f} with a longest gap of "
+               f"{rt['raw'].get('missed_periods', 0):.0f}{stalls_of(rt['raw'])} with a longest gap of "
                f"{rt['raw']['stamp_jitter_ms']['max']:.1f} ms; the hypervisor ran something else instead of this "
                f"machine's CPUs for {rt.get('machine_steal_ms', 0):.0f} ms of the window (steal, /proc/stat). "
                "When both stall together the whole machine did "

@@ -76,9 +76,14 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
   if (s.stamps.size() > 1) {
     // The publisher's stamps against its own deadline grid t0 + k * period: which period each State
     // belongs to, how far off the grid it woke, and whether that offset slides (drift) over the window.
-    // Periods without a State are missed periods (a late cycle skips them rather than bursting).
+    // Missed periods: the periods spanned less the States stamped in them (a late hub skips periods,
+    // counting overruns, rather than bursting); never negative, which it was for a bare loop whose
+    // catch-up burst straddled the window's end. Periods no stamp falls in at all are the program's
+    // stalls: the bare loop, which writes the States of the periods it slept through late in a
+    // burst (their stamps fall together in the period it woke in), has none missed but these.
     double sum_t = 0, sum_r = 0, sum_tt = 0, sum_tr = 0;
-    std::int64_t last_k = 0;
+    std::int64_t last_k = -1;
+    std::int64_t slots = 0;
     for (const double stamp : s.stamps) {
       const double t = stamp - s.stamps.front();
       const auto k = std::llround(t / period);
@@ -87,12 +92,14 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
       sum_r += r;
       sum_tt += t * t;
       sum_tr += t * r;
+      if (k != last_k) ++slots;  // stamps only grow, so one period's stamps come one after another
       last_k = k;
     }
     const auto n = static_cast<double>(s.stamps.size());
     const double slope = (n * sum_tr - sum_t * sum_r) / (n * sum_tt - sum_t * sum_t);
     out["drift_ppm"] = slope * 1e6;
-    out["missed_periods"] = static_cast<double>(last_k + 1) - n;
+    out["missed_periods"] = std::max(0.0, static_cast<double>(last_k + 1) - n);
+    out["periods_without_wakeup"] = static_cast<double>(last_k + 1 - slots);
     out["seq_gaps"] =
         static_cast<double>(s.seqs.back() - s.seqs.front() + 1) - static_cast<double>(s.seqs.size());
   }
