@@ -108,9 +108,9 @@ nlohmann::ordered_json describe(const Stream& s, double period, double window_s,
   out["anon_mb"] = after.anon_mb;
   out["hwm_mb"] = after.hwm_mb;
   // Under qemu-user (bench/board_rss.py): the guest program's own share of the process's RSS.
-  if (after.guest_rss_mb >= 0) {
-    out["guest_rss_mb"] = after.guest_rss_mb;
-    out["guest_anon_mb"] = after.guest_anon_mb;
+  if (after.guest_mb) {
+    out["guest_rss_mb"] = after.guest_mb->rss;
+    out["guest_anon_mb"] = after.guest_mb->anon;
   }
   out["threads"] = after.threads;
   for (std::size_t i = 1; i < s.stamps.size(); ++i) {

@@ -21,6 +21,7 @@ namespace hubrt::bench {
 // Resident memory, and how much of it is anonymous: pages no file backs (heap, stacks, the written
 // copies of a library's data), which only swap could take back, unlike the pages of a program's
 // code and read-only data, which the kernel drops under pressure and reads again from the file.
+// In the unit its function names (kB or MB).
 struct Resident {
   double rss = 0;
   double anon = 0;

@@ -71,10 +71,7 @@ Expected<ProcSample> read_proc(pid_t pid) {
     if (key == "VmHWM:") sample.hwm_mb = value / 1024.0;
     if (key == "Threads:") sample.threads = static_cast<int>(value);
   }
-  if (const auto guest = emulated_guest_rss_mb(pid)) {
-    sample.guest_rss_mb = guest->rss;
-    sample.guest_anon_mb = guest->anon;
-  }
+  sample.guest_mb = emulated_guest_rss_mb(pid);
   return sample;
 }
 

@@ -2,9 +2,13 @@
 // and /proc/<pid>/status (under qemu-user also /proc/<pid>/smaps: guest_memory.h).
 #pragma once
 
+#include <optional>
+
 #include <sys/types.h>
 
 #include "hubrt/base/status.h"
+
+#include "guest_memory.h"
 
 namespace hubrt::bench {
 
@@ -14,10 +18,9 @@ struct ProcSample {
   double anon_mb = 0;  // of it, anonymous pages (RssAnon; guest_memory.h says why it matters)
   double hwm_mb = 0;   // peak resident set (VmHWM)
   int threads = 0;
-  // Under qemu-user: the guest program's own resident memory, without qemu's (guest_memory.h);
-  // negative for a native process.
-  double guest_rss_mb = -1;
-  double guest_anon_mb = -1;
+  // Under qemu-user: the guest program's own resident memory in MB, without qemu's
+  // (guest_memory.h); none for a native process.
+  std::optional<Resident> guest_mb;
 };
 
 // Errors: kNotFound when the process is gone; kIo when the files do not parse.
