@@ -222,3 +222,45 @@ const TypeRegistry& all_types() noexcept {
 }  // namespace hubrt::msgs
 ]=])
 endfunction()
+
+# hubrt_add_msg_definitions(TARGET <target> [PACKAGE <pkg> FILES <file.msg>...]...): a library
+# defining hubrt::msgs::msg_definitions(), msg_text() and ros2msg_schema() (hubrt/msgs/definitions.h)
+# over the .msg files given, each PACKAGE's files following it. The table is written at build time,
+# so that editing a .msg rebuilds it. One such library per program.
+function(hubrt_add_msg_definitions)
+  cmake_parse_arguments(PARSE_ARGV 0 A "" "TARGET" "")
+  set(entries "")
+  set(files "")
+  set(package "")
+  set(expect "")
+  foreach(arg IN LISTS A_UNPARSED_ARGUMENTS)
+    if(arg STREQUAL "PACKAGE")
+      set(expect package)
+    elseif(arg STREQUAL "FILES")
+      set(expect files)
+    elseif(expect STREQUAL "package")
+      set(package "${arg}")
+      set(expect "")
+    elseif(expect STREQUAL "files" AND package)
+      get_filename_component(abs "${arg}" ABSOLUTE)
+      list(APPEND entries "${package}|${abs}")
+      list(APPEND files "${abs}")
+    else()
+      message(FATAL_ERROR "usage: hubrt_add_msg_definitions(TARGET <t> [PACKAGE <pkg> FILES <file.msg>...]...); "
+                          "unexpected '${arg}'")
+    endif()
+  endforeach()
+  if(NOT A_TARGET OR NOT entries)
+    message(FATAL_ERROR "hubrt_add_msg_definitions: a TARGET and at least one PACKAGE with FILES are needed")
+  endif()
+  set(out "${CMAKE_CURRENT_BINARY_DIR}/${A_TARGET}_table.cc")
+  set(script "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/write_msg_definitions.cmake")
+  add_custom_command(OUTPUT "${out}"
+    COMMAND ${CMAKE_COMMAND} "-DOUT=${out}" "-DENTRIES=${entries}" -P "${script}"
+    DEPENDS ${files} "${script}"
+    COMMENT "Writing the .msg definitions table of ${A_TARGET}"
+    VERBATIM)
+  hubrt_add_library(${A_TARGET} SOURCES "${out}" "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../src/definitions.cc"
+    PUBLIC_DEPS hubrt_base PRIVATE_DEPS hubrt_msgs_drift fmt::fmt)
+  target_include_directories(${A_TARGET} PUBLIC "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../include")
+endfunction()
