@@ -212,7 +212,7 @@ TEST_F(NodeLifecycleTest, ThePublishedHeaderCarriesTheLifecycle) {
 
 // The ROS 2 interface names the same numbers: LIFECYCLE_<NAME>=<number> for every state.
 TEST(LifecycleName, MatchesTheConstantsOfStateHeaderMsg) {
-  std::ifstream msg(std::string(HUBRT_SOURCE_DIR) + "/ros2/hub_msgs/msg/StateHeader.msg");
+  std::ifstream msg(std::string(HUBRT_SOURCE_DIR) + "/firmware/msgs/msg/StateHeader.msg");
   ASSERT_TRUE(msg.good());
   const std::regex constant(R"(^uint8 LIFECYCLE_([A-Z_]+)=([0-9]+)\b)");
   std::size_t seen = 0;
