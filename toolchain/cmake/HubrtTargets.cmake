@@ -32,6 +32,24 @@ if(HUBRT_BOARD_LTO)
   add_link_options("$<IF:$<BOOL:$<TARGET_PROPERTY:HUBRT_LTO>>,-flto=auto,-fno-lto>")
 endif()
 
+# hubrt_linked_targets(<target> <out>): what <target> links, directly (its LINK_LIBRARIES, for a
+# target that is not an interface library) and through its interface (INTERFACE_LINK_LIBRARIES).
+function(hubrt_linked_targets target out)
+  set(links "")
+  get_target_property(type ${target} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    get_target_property(direct ${target} LINK_LIBRARIES)
+    if(direct)
+      list(APPEND links ${direct})
+    endif()
+  endif()
+  get_target_property(interface ${target} INTERFACE_LINK_LIBRARIES)
+  if(interface)
+    list(APPEND links ${interface})
+  endif()
+  set(${out} ${links} PARENT_SCOPE)
+endfunction()
+
 # hubrt_target_defaults(<target>): warnings (errors when HUBRT_WERROR) for our own code only.
 function(hubrt_target_defaults target)
   get_target_property(_type ${target} TYPE)
