@@ -30,22 +30,22 @@
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_process.h"
 
 #include "dock_board_file.h"
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::kernel_test {
 namespace {
 
 using dock_ecu::DockCommand;
 using dock_ecu::DockState;
-using integration::HubProcess;
-using integration::HubProcessOptions;
 using std::chrono::microseconds;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using std::chrono::steady_clock;
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 
 // Generous: the guest runs under software emulation (TCG) on a 2-core host that may be busy with
 // sanitizer builds; hubd then takes seconds to start and a scheduling hiccup can take a second.

@@ -22,8 +22,8 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/kernel_test/environment.h"
+#include "hubrt/test_support/hub_process.h"
 
-#include "hub_process.h"
 #include "operator_messages.h"
 
 namespace hubrt::operator_hub {
@@ -91,11 +91,11 @@ class HubdOperatorKernelTest : public ::testing::Test {
     ASSERT_TRUE(reader) << reader.error().message;
     state_reader_.emplace(std::move(*reader));
 
-    integration::HubProcessOptions options;
+    test_support::HubProcessOptions options;
     options.board = board_;
     options.hub = hub_file_;
     options.extra_args = {"--backend", "linux"};
-    auto hub = integration::HubProcess::start(*domain_, options);
+    auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
     ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
@@ -145,7 +145,7 @@ class HubdOperatorKernelTest : public ::testing::Test {
   std::optional<dds::Topic<OperatorPanelState>> state_topic_;
   std::optional<dds::Reader<OperatorPanelState>> state_reader_;
   dds::Sample<OperatorPanelState> state_;
-  std::optional<integration::HubProcess> hub_;
+  std::optional<test_support::HubProcess> hub_;
 };
 
 TEST_F(HubdOperatorKernelTest, AUinputKeyboardTypesABadgeAndTheHubVerifiesIt) {

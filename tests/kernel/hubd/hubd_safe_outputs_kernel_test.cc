@@ -33,20 +33,20 @@
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_process.h"
 
-#include "hub_process.h"
 #include "rsp_messages.h"
 
 namespace hubrt::kernel_test {
 namespace {
 
-using integration::HubProcess;
-using integration::HubProcessOptions;
 using rsp_ecu::RspCommand;
 using rsp_ecu::RspState;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using std::chrono::steady_clock;
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 
 // Generous: the guest runs under software emulation on a busy 2-core host (tests/kernel/README.md).
 constexpr auto kPatience = seconds(30);
@@ -217,7 +217,7 @@ TEST_F(HubdSafeOutputsKernelTest, AfterKillNineTheUnitsExecStopPostLeavesBothVal
   test_support::Environment env{{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR},
                                 // Any DDS use would fail on this: --safe-outputs uses none.
                                 {"CYCLONEDDS_URI", "<CycloneDDS><Broken"}};
-  auto safe = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  auto safe = test_support::ChildProcess::start(test_support::hubd_path(), args, env);
   ASSERT_TRUE(safe) << safe.error().message;
   auto done = safe->wait(kPatience);
   ASSERT_TRUE(done) << done.error().message;
@@ -234,8 +234,8 @@ TEST_F(HubdSafeOutputsKernelTest, WithoutHubdRunningItExitsOneNamingEveryOutputI
   chip_.reset();  // the chip is gone: a board whose GPIO expander is unplugged
   const std::vector<std::string> args = exec_stop_post();
   ASSERT_FALSE(args.empty());
-  auto safe =
-      test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, {{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR}});
+  auto safe = test_support::ChildProcess::start(test_support::hubd_path(), args,
+                                                {{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR}});
   ASSERT_TRUE(safe) << safe.error().message;
   auto done = safe->wait(kPatience);
   ASSERT_TRUE(done) << done.error().message;
