@@ -168,12 +168,19 @@ function(hubrt_add_test name)
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
     TEST_LIST ${name}_TESTS)
-  set(_cross_env "")
+  # HUBRT_TEST_ENVIRONMENT (a list of NAME=value, set by the project: tests/new_hub) goes into every
+  # test's environment.
+  set(_env ${HUBRT_TEST_ENVIRONMENT})
   if(CMAKE_CROSSCOMPILING_EMULATOR)
     # Under qemu-user (no binfmt_misc) a test cannot exec a target program directly: tests that
     # start programs put this space-separated command in front of them.
     list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
-    set(_cross_env " ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\"")
+    list(APPEND _env "HUBRT_TARGET_EMULATOR=${_emulator}")
+  endif()
+  set(_cross_env "")
+  if(_env)
+    list(JOIN _env ";" _env_text)
+    set(_cross_env " ENVIRONMENT \"${_env_text}\"")
   endif()
   set(_props ${CMAKE_CURRENT_BINARY_DIR}/${name}_properties.cmake)
   file(GENERATE OUTPUT ${_props} CONTENT

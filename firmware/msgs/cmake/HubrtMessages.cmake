@@ -235,7 +235,10 @@ function(hubrt_add_messages)
     HUBRT_IDL_STEMS "${stems}"
     HUBRT_MSG_KNOWN "${known}"
     HUBRT_MSG_FILES "${msg_files}"
-    HUBRT_MSG_ENTRIES "${msg_entries}")
+    HUBRT_MSG_ENTRIES "${msg_entries}"
+    # Exported with the target (toolchain/cmake/HubrtExport.cmake), for message targets built
+    # against this build elsewhere (DEPENDS hubrt_msgs_common there) and their registries.
+    EXPORT_PROPERTIES "HUBRT_IDL_INCLUDE_DIRS;HUBRT_IDL_FILES;HUBRT_IDL_STEMS;HUBRT_MSG_KNOWN;HUBRT_MSG_FILES;HUBRT_MSG_ENTRIES;HUBRT_MSG_TEXTS_FUNCTION")
   if(msg_entries)
     set_target_properties(${A_TARGET} PROPERTIES HUBRT_MSG_TEXTS_FUNCTION "msg_texts_of_${target_id}")
   else()
