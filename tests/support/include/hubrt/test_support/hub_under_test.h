@@ -190,6 +190,9 @@ class HubUnderTest {
   std::string hub_file(const std::string& hub, const std::string& layout,
                        const std::vector<std::pair<std::string, std::string>>& edits = {});
 
+  // Ends hubd now (killed and reaped, if it still runs), for a test whose devices must outlive it.
+  void end_hub() { hub_.reset(); }
+
   // Sends `signal` and checks the documented clean stop: exit 0 and the outputs driven to their
   // safe state, in time.
   ::testing::AssertionResult stops_cleanly(int signal = SIGTERM);
