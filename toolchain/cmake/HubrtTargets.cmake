@@ -32,6 +32,24 @@ if(HUBRT_BOARD_LTO)
   add_link_options("$<IF:$<BOOL:$<TARGET_PROPERTY:HUBRT_LTO>>,-flto=auto,-fno-lto>")
 endif()
 
+# hubrt_linked_targets(<target> <out>): what <target> links, directly (its LINK_LIBRARIES, for a
+# target that is not an interface library) and through its interface (INTERFACE_LINK_LIBRARIES).
+function(hubrt_linked_targets target out)
+  set(links "")
+  get_target_property(type ${target} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    get_target_property(direct ${target} LINK_LIBRARIES)
+    if(direct)
+      list(APPEND links ${direct})
+    endif()
+  endif()
+  get_target_property(interface ${target} INTERFACE_LINK_LIBRARIES)
+  if(interface)
+    list(APPEND links ${interface})
+  endif()
+  set(${out} ${links} PARENT_SCOPE)
+endfunction()
+
 # hubrt_target_defaults(<target>): warnings (errors when HUBRT_WERROR) for our own code only.
 function(hubrt_target_defaults target)
   get_target_property(_type ${target} TYPE)
@@ -215,12 +233,19 @@ function(hubrt_add_test name)
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
     TEST_LIST ${name}_TESTS)
-  set(_cross_env "")
+  # HUBRT_TEST_ENVIRONMENT (a list of NAME=value, set by the project: tests/new_hub) goes into every
+  # test's environment.
+  set(_env ${HUBRT_TEST_ENVIRONMENT})
   if(CMAKE_CROSSCOMPILING_EMULATOR)
     # Under qemu-user (no binfmt_misc) a test cannot exec a target program directly: tests that
     # start programs put this space-separated command in front of them.
     list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
-    set(_cross_env " ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\"")
+    list(APPEND _env "HUBRT_TARGET_EMULATOR=${_emulator}")
+  endif()
+  set(_cross_env "")
+  if(_env)
+    list(JOIN _env ";" _env_text)
+    set(_cross_env " ENVIRONMENT \"${_env_text}\"")
   endif()
   set(_props ${CMAKE_CURRENT_BINARY_DIR}/${name}_properties.cmake)
   file(GENERATE OUTPUT ${_props} CONTENT
