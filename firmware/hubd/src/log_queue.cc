@@ -98,7 +98,16 @@ bool LogQueue::drain(Duration timeout) noexcept {
 
 bool LogQueue::finish(Duration timeout) noexcept {
   finished_ = true;
-  const bool drained = drain(timeout);
+  // A writer that makes progress (a loaded machine, a slow terminal) gets up to four timeouts; one
+  // that wrote nothing for a whole timeout is stuck on a reader that does not read.
+  std::size_t before = queued();
+  bool drained = drain(timeout);
+  for (int round = 1; !drained && round < 4; ++round) {
+    const std::size_t left = queued();
+    if (left >= before) break;
+    before = left;
+    drained = drain(timeout);
+  }
   bool idle = false;
   {
     const std::lock_guard lock(mutex_);

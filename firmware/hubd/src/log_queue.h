@@ -56,9 +56,10 @@ class LogQueue {
   // Returns true when the queue is empty.
   bool drain(Duration timeout) noexcept;
 
-  // Drains up to `timeout`, then stops the writer: joins it when it is idle; when it is still
-  // blocked in write(2) (nobody reads stderr), leaves it there — the process ends around it —
-  // and returns false. Lines pushed afterwards are dropped and counted. Call once, from one thread.
+  // Drains up to `timeout` — and up to three timeouts more while the writer makes progress — then
+  // stops the writer: joins it when it is idle; when it is still blocked in write(2) (nobody reads
+  // stderr), leaves it there — the process ends around it — and returns false. Lines pushed
+  // afterwards are dropped and counted. Call once, from one thread.
   bool finish(Duration timeout) noexcept;
 
   // Lines waiting now. Thread-safe.

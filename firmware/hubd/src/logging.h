@@ -25,8 +25,9 @@ Expected<std::shared_ptr<spdlog::logger>> make_logger(const std::string& name, c
 // Log lines dropped so far: stderr refused them, or the queue to it was full. Thread-safe.
 const std::atomic<std::uint64_t>& log_lines_dropped() noexcept;
 
-// Waits up to `timeout` for the queued lines to be written, then stops the writer thread (left
-// blocked in write(2) when nobody reads stderr: the process ends around it). Call once, at the
+// Waits up to `timeout` for the queued lines to be written (longer while they are being written:
+// LogQueue::finish), then stops the writer thread (left blocked in write(2) when nobody reads
+// stderr: the process ends around it). Call once, at the
 // very end; later lines are dropped and counted. Returns true when every line was written.
 bool finish_logging(Duration timeout) noexcept;
 inline constexpr Duration kLogFinishTimeout = std::chrono::milliseconds(500);
