@@ -94,10 +94,11 @@ class CommandAgeJudge {
 
 // How long commands are discarded after a stall longer than the command timeout: until the hub
 // has caught up, taken as `kStallSettle` or one period, whichever is longer. What queued while
-// the process could not run is in its sockets when it continues, and Cyclone's receive thread
-// reads that backlog at once (a few milliseconds for a 4 s backlog of a 10 Hz planner; the
-// SIGSTOP test in tests/integration shows none acting): 100 ms covers it on a loaded machine and
-// costs a live planner one or two commands after a stall that already made its node safe.
+// the process could not run is in its sockets when it continues, and Cyclone's receive thread,
+// running again with the cycle, reads that backlog at once (tests/integration's
+// hubd_stale_after_stop_test, with clock_tolerance_ms: none, shows none of it acting): 100 ms
+// leaves room for a loaded machine and costs a live planner one or two commands after a stall
+// that already made its node safe.
 inline constexpr Duration kStallSettle = std::chrono::milliseconds(100);
 
 }  // namespace hubrt::runtime
