@@ -82,7 +82,9 @@ template <class C>
 class OneCommandSource final : public CommandSource<C> {
  public:
   void post(const C& command) { pending_ = &command; }
-  Result<const C*> next() noexcept override { return std::exchange(pending_, nullptr); }
+  Result<ReceivedCommand<C>> next() noexcept override {
+    return ReceivedCommand<C>{std::exchange(pending_, nullptr), std::nullopt};
+  }
 
  private:
   const C* pending_ = nullptr;

@@ -3,6 +3,7 @@
 // failed (1), the file is wrong (2) or Ctrl-C/SIGTERM stopped the run (130/143).
 #include <fmt/format.h>
 
+#include "command_channel.h"
 #include "commands.h"
 #include "scenario.h"
 #include "scenario_runner.h"
@@ -18,6 +19,7 @@ struct PlayCommandOptions {
   int rounds = 1;
   bool quiet = false;
   bool check_only = false;
+  std::uint32_t lifespan_ms = kDefaultCommandLifespanMs;
 };
 
 int run_play(const PlayCommandOptions& options) {
@@ -41,6 +43,7 @@ int run_play(const PlayCommandOptions& options) {
   play.discovery_timeout = seconds(options.domain.timeout_s);
   play.rounds = options.rounds;
   play.quiet = options.quiet;
+  play.command_lifespan_ms = options.lifespan_ms;
   ScenarioRunner runner(*participant, *scenario, play, stdout);
   switch (runner.run()) {
     case PlayOutcome::kPassed:
@@ -72,6 +75,7 @@ void add_play_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 1'000'000));
   cmd->add_flag("--quiet,-q", options->quiet, "Report failures and the summary only");
   cmd->add_flag("--check", options->check_only, "Only load and check the file");
+  add_lifespan_option(*cmd, options->lifespan_ms);
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_play(*options); });
 }

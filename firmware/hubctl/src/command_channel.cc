@@ -7,6 +7,23 @@
 
 namespace hubrt::hubctl {
 
+dds::Qos command_qos(std::uint32_t lifespan_ms) {
+  dds::Qos qos = dds::Qos::ros2_default();
+  if (lifespan_ms > 0) qos.lifespan(std::chrono::milliseconds(lifespan_ms));
+  return qos;
+}
+
+void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms) {
+  cmd.add_option(
+         "--lifespan-ms", lifespan_ms,
+         fmt::format("DDS LIFESPAN of the commands written, in ms (0: none; default {}, the hub file's "
+                     "default command_timeout_ms: set the hub's own, which /diagnostics publishes). "
+                     "Cyclone then drops a command that could no longer act instead of "
+                     "retransmitting or delivering it late (docs/interop.md)",
+                     kDefaultCommandLifespanMs))
+      ->check(CLI::Range(0U, 3'600'000U));
+}
+
 Expected<PreparedCommand> prepare_command(const msgs::TypeInfo& type, const std::string& target_type,
                                           const std::string& target_name, const FieldAssignments& fields,
                                           std::string label) {

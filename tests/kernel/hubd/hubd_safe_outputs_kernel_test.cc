@@ -5,11 +5,11 @@
 //
 // gpio-sim gives a released line the level of its pull (gpio_sim_free() in
 // drivers/gpio/gpio-sim.c), so a line's level after its holder is gone is what the holder left as
-// the line's bias: --safe-outputs and the crash handler pull each output toward its safe level.
-// The gripper valve (safe: grab, active) shows the hazard without help: released by a killed
-// hubd, it drops to the default pull-down, i.e. the gripper opens. The lock valve (safe: closed,
-// inactive) is given a pull-up after the kill, standing in for a driver that keeps a released
-// line's last level (the valve stays energised, the changer open).
+// the line's bias: the running hubd requests every output with a pull toward its safe level
+// (issue 29), and so do --safe-outputs and the crash handler. So after `kill -9` both valves are
+// safe before ExecStopPost runs: the gripper valve (safe: grab, active), commanded open, is
+// pulled back up. Then the test stands in for a driver that does not keep a released line's pull
+// (the gripper dropped open, the lock valve energised, the changer open) before ExecStopPost.
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -178,9 +178,14 @@ TEST_F(HubdSafeOutputsKernelTest, AfterKillNineTheUnitsExecStopPostLeavesBothVal
   auto ended = hub_.hub().process().wait(kPatience);
   ASSERT_TRUE(ended) << ended.error().message;
   ASSERT_TRUE(ended->killed_by(SIGKILL)) << ended->describe();
-  // The hazard: with hubd gone the gripper line fell to its pull (the gripper opens), and a lock
+  // hubd's own requests pulled the lines toward their safe levels: released by the kill, they
+  // fell there before anything else ran (before issue 29 the gripper line dropped open here).
+  EXPECT_EQ(line(kGripperValveLine), 1) << "the gripper line did not fall back to grab";
+  EXPECT_EQ(line(kLockValveLine), 0);
+  // The hazard on a driver that forgets a released line's pull: the gripper drops open, and a lock
   // valve line that kept its level would keep the changer open.
-  EXPECT_EQ(line(kGripperValveLine), 0);
+  ASSERT_TRUE(set_pull(chip(), kGripperValveLine, Pull::kDown));
+  ASSERT_EQ(line(kGripperValveLine), 0);
   ASSERT_TRUE(set_pull(chip(), kLockValveLine, Pull::kUp));
   ASSERT_EQ(line(kLockValveLine), 1);
 
