@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hubrt/mcap/summary.h"
 #include "hubrt/mcap/writer.h"
 
 namespace {
@@ -79,9 +80,12 @@ int main(int argc, char** argv) {
   write(folder, "zstd", zstd);
   write(folder, "lz4", recording(scratch, Compression::kLz4));
   write(folder, "uncompressed", recording(scratch, Compression::kNone));
-  write(folder, "cut-in-a-chunk",
-        std::vector<std::uint8_t>(zstd.begin(),
-                                  zstd.begin() + static_cast<std::ptrdiff_t>(zstd.size() * 3 / 5)));
+  // Cut in the middle of the middle chunk, as a recorder killed while writing it leaves the file.
+  auto summary = hubrt::mcap::read_summary(*hubrt::mcap::memory_source(zstd));
+  if (!summary || summary->chunk_indexes.empty()) return 1;
+  const auto& middle = summary->chunk_indexes[summary->chunk_indexes.size() / 2];
+  const auto cut = static_cast<std::ptrdiff_t>(middle.chunk_start_offset + middle.chunk_length / 2);
+  write(folder, "cut-in-a-chunk", std::vector<std::uint8_t>(zstd.begin(), zstd.begin() + cut));
   write(folder, "unchunked", unchunked());
   fs::remove(scratch);
   return 0;
