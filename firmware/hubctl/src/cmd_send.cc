@@ -13,6 +13,7 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
+#include "command_qos.h"
 #include "commands.h"
 #include "reader_wait.h"
 #include "render.h"
@@ -82,7 +83,7 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: {}\n", topic.error().message);
     return kExitFailed;
   }
-  auto writer = dds::UntypedWriter::create(*participant, *topic);
+  auto writer = dds::UntypedWriter::create(*participant, *topic, command_writer_qos());
   if (!writer) {
     fmt::print(stderr, "hubctl send: {}\n", writer.error().message);
     return kExitFailed;

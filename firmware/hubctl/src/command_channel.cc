@@ -5,6 +5,8 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
+#include "command_qos.h"
+
 namespace hubrt::hubctl {
 
 Expected<PreparedCommand> prepare_command(const msgs::TypeInfo& type, const std::string& target_type,
@@ -36,7 +38,7 @@ Expected<CommandChannel> CommandChannel::open(const dds::Participant& participan
   }
   auto topic = dds::UntypedTopic::create(participant, *type.descriptor, ros_topic);
   if (!topic) return std::move(topic).error();
-  auto writer = dds::UntypedWriter::create(participant, *topic);
+  auto writer = dds::UntypedWriter::create(participant, *topic, command_writer_qos());
   if (!writer) return std::move(writer).error();
   return CommandChannel(std::move(*topic), std::move(*writer));
 }

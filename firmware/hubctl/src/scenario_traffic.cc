@@ -9,6 +9,7 @@
 #include "hubrt/dds/ros_names.h"
 #include "hubrt/msgs/all_types.h"
 
+#include "command_qos.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -112,7 +113,7 @@ Expected<WriterEntry*> ScenarioTraffic::writer(const std::string& topic, const m
     auto t = dds::UntypedTopic::create(participant_, *type.descriptor, topic);
     if (!t) return std::move(t).error();
     entry->topic.emplace(std::move(*t));
-    auto w = dds::UntypedWriter::create(participant_, *entry->topic);
+    auto w = dds::UntypedWriter::create(participant_, *entry->topic, command_writer_qos());
     if (!w) return std::move(w).error();
     entry->writer.emplace(std::move(*w));
     it = writers_.emplace(topic, std::move(entry)).first;

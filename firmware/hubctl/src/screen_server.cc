@@ -20,7 +20,9 @@
 
 #include "confirm_gate.h"
 #include "screen_format.h"
+#include "station_tap.h"
 #include "station_watch.h"
+#include "tap_decoder.h"
 #include "web_assets.h"
 
 namespace hubrt::hubctl {
@@ -75,6 +77,12 @@ class DdsSide {
     auto participant = join_domain(options.domain, "hubctl-serve");
     if (!participant) return participant.error();
     auto side = std::unique_ptr<DdsSide>(new DdsSide(std::move(*participant), options));
+    TapOptions tap_options;
+    tap_options.filter = &is_state_topic;
+    auto tap = StationTap::start(side->participant_, std::move(tap_options));
+    if (!tap) return tap.error();
+    side->tap_ = std::move(*tap);
+    side->states_ = side->tap_->subscribe(10'000);
     const auto& types = msgs::all_types();
     side->instruction_type_ = types.find_by_ros_name("hub_msgs/msg/OperatorInstruction");
     side->confirm_type_ = types.find_by_ros_name("hub_msgs/msg/OperatorConfirm");
@@ -99,8 +107,8 @@ class DdsSide {
   }
 
   // One pass: new States and instructions; true when the snapshot should be sent again.
-  bool poll(Clock::time_point now) {
-    bool changed = watch_.poll(participant_, now);
+  bool poll(Clock::time_point /*now*/) {
+    bool changed = watch_.drain(*states_, state_decoder_);
     while (true) {
       const Result<bool> taken = instruction_reader_->take_next(instruction_sample_->data());
       if (!taken.is_ok() || !taken.value()) break;
@@ -138,11 +146,14 @@ class DdsSide {
   DdsSide(dds::Participant participant, const ServeOptions& options)
       : participant_(std::move(participant)),
         operator_state_(options.operator_state),
-        watch_("hubctl serve"),
+        state_decoder_("hubctl serve", participant_),
         decoder_("hubctl serve", options.instruction_topic) {}
 
   dds::Participant participant_;
   std::string operator_state_;
+  std::unique_ptr<StationTap> tap_;  // every State, as they come; before the decoder, after the participant
+  std::unique_ptr<TapSubscription> states_;
+  TapDecoder state_decoder_;
   StationWatch watch_;
   SampleDecoder decoder_;
   const msgs::TypeInfo* instruction_type_ = nullptr;

@@ -130,6 +130,18 @@ TEST(Corruption, ClaimedSizesBeyondTheLimitsAreRefusedUnread) {
   EXPECT_EQ(limited->stop().reason, StopReason::kCorrupt);
 }
 
+// Found by the fuzz harness (UBSan): a record of no content made the memory source memcpy into
+// the null data() of an empty buffer.
+TEST(Corruption, ARecordWithoutContentIsSkipped) {
+  std::vector<std::uint8_t> records = {0x80, 0, 0, 0, 0, 0, 0, 0, 0};  // a private record, empty
+  append_record(records, DataEnd{0});
+  const auto bytes = file_with(records);
+  auto reader = LinearReader::open(memory_source(bytes));
+  ASSERT_TRUE(reader);
+  EXPECT_FALSE(reader->next());
+  EXPECT_EQ(reader->stop().reason, StopReason::kDataEnd) << reader->stop().message;
+}
+
 TEST(Corruption, AMessageBeforeItsChannelAndTextThatIsNotUtf8AreRefused) {
   std::vector<std::uint8_t> message;
   const std::uint8_t data[2] = {9, 9};
