@@ -84,8 +84,9 @@ void Bridge::disconnect(std::uint32_t client_id) {
   const SessionCounters c = session->counters();
   if (log_)
     log_(fmt::format(
-        "client {} ({}) left: {} messages sent, {} dropped, {} published, {} refused; {} clients", client_id,
-        session->peer(), c.messages_queued, c.messages_dropped, c.published, c.publish_refused, left));
+        "client {} ({}) left: {} messages queued for it, {} dropped, {} published, {} refused; {} clients",
+        client_id, session->peer(), c.messages_queued, c.messages_dropped, c.published, c.publish_refused,
+        left));
 }
 
 void Bridge::dispatch(const TapEvent& event) {

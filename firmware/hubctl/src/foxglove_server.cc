@@ -98,8 +98,10 @@ class Connection final : public ClientLink, public std::enable_shared_from_this<
     peer_ = ec                         ? std::string("?")
             : remote.address().is_v6() ? fmt::format("[{}]:{}", address, remote.port())
                                        : fmt::format("{}:{}", address, remote.port());
-    ws_.next_layer().socket().set_option(tcp::no_delay(true),
-                                         ec);  // one small frame need not wait for the last's ACK
+    // One small frame need not wait for the last one's ACK (Nagle).
+    ws_.next_layer().socket().set_option(tcp::no_delay(true), ec);
+    ws_.next_layer().socket().set_option(
+        net::socket_base::send_buffer_size(server_.options.socket_send_buffer), ec);
     ++server_.handshakes;
     in_handshake_ = true;
     ws_.next_layer().expires_after(kHandshakeTime);
