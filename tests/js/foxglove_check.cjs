@@ -5,7 +5,8 @@
 //     subscribes to T (prints "subscribed"), decodes each message from the advertised schema and
 //     finds every sample `hubctl echo --json` printed into FILE (N lines), in order, field by field;
 //     receive timestamps near this machine's clock and in order; a publish on the RSP's command
-//     topic is refused with a status and the RSP's State shows no command.
+//     topic is refused with a status and the RSP's State shows no command; a client that sends more
+//     than 64 KiB at once is closed (1009) and the others go on.
 //   node foxglove_check.cjs publish --url WS --rsp-state T --rsp-command T --msg FILE
 //     (--allow-publish) serverInfo with clientPublish and cdr; a command published on the command
 //     topic takes effect (the RSP's State echoes it, fresh); a State topic and bad bytes refused.
@@ -103,7 +104,16 @@ async function check(a) {
   if (after.length < 5) fail(`${after.length} RSP States in 2 s after the refused publish`);
   const commanded = after.find((m) => m.value.echo.action !== "" || m.value.fresh_msg);
   if (commanded) fail(`the RSP took a command although publishing is off: ${json(commanded.value.echo)}`);
-  console.log(json({ topics, matched: lines().length, received: sub.messages.length,
+  // A client message over the server's 64 KiB: the connection is closed (RFC 6455 1009), the others go on.
+  const big = new Session(a.url);
+  await big.until("serverInfo", () => big.serverInfo);
+  big.ws.send("x".repeat(70 * 1024));
+  const deadline = Date.now() + 30_000;
+  while (!big.closed && Date.now() < deadline) await sleep(20);
+  if (big.closeCode !== 1009) fail(`a 70 KiB message: close code ${big.closeCode}, not 1009 (message too big)`);
+  const still = sub.messages.length;
+  await session.until("messages after the big one", () => sub.messages.length > still);
+  console.log(json({ topics, matched: lines().length, received: sub.messages.length, too_big_closed: big.closeCode,
                      refused: session.statuses.map((s) => s.message) }));
   session.close();
 }

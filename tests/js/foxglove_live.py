@@ -78,7 +78,7 @@ def check_against_echo(live, url):
     report = live.report("fox_check", check)
     log(f"advertised {len(report['topics'])} channels ({', '.join(report['topics'])}); {report['matched']} States "
         f"hubctl echo printed found among {report['received']} decoded from the advertised schema; "
-        f"publishing off: {report['refused'][0]!r}")
+        f"publishing off: {report['refused'][0]!r}; a 70 KiB client message: closed with {report['too_big_closed']}")
 
 
 def publish_when_allowed(live):

@@ -43,7 +43,10 @@ class Session {
       }));
     this.client.on("status", (status) => this.statuses.push(status));
     this.client.on("error", (error) => this.errors.push(error));
-    this.client.on("close", () => (this.closed = true));
+    this.client.on("close", (event) => {
+      this.closed = true;
+      this.closeCode = event?.code;
+    });
     this.client.on("message", (m) => this.onMessage(m));
   }
 

@@ -1,8 +1,12 @@
 // The command writers of hubctl foxglove --allow-publish on a private loopback domain: a client's
 // CDR bytes arrive at a hub's reader as the command they encode; bytes Cyclone would refuse from
 // the network are refused here and nothing is written; only registered command types; one writer
-// per topic while a client uses it, a bounded number of topics.
+// per topic while a client uses it, a bounded number of topics; with DDS Security, hubctl's
+// identity bounds them all: as an observer no client can have a command written.
 #include "foxglove_commands.h"
+
+#include <ctime>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 
@@ -12,7 +16,11 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
+#include "hubrt/security/participant_security.h"
+#include "hubrt/security/pki.h"
 #include "hubrt/test_support/test_domain.h"
+
+#include "role_permissions.h"
 
 namespace hubrt::hubctl::foxglove {
 namespace {
@@ -107,6 +115,47 @@ TEST_F(CommandWritersTest, OnlyCommandTypesAndABoundedNumberOfTopics) {
   EXPECT_EQ(c.error().code, ErrorCode::kOutOfRange);
   b->reset();  // the last client of /lift/command let go: its place is free
   EXPECT_TRUE(writers.open("/tool/command", "hub_msgs/msg/SmartToolCommand"));
+}
+
+// The station's PKI as `hubctl security init/add` makes it, an observer and a planner in it.
+TEST(CommandWritersSecurity, TheIdentityBoundsWhatAnyClientCanPublish) {
+  auto domain = test_support::TestDomain::acquire();
+  ASSERT_TRUE(domain) << domain.error().message;
+  namespace fs = std::filesystem;
+  std::string dir = (fs::temp_directory_path() / "hubrt-foxglove-pki-XXXXXX").string();
+  ASSERT_NE(::mkdtemp(dir.data()), nullptr);
+  const std::string station = dir + "/station";
+  const std::int64_t now = std::time(nullptr);
+  const security::Validity validity{now - 3600, now + 86400};
+  ASSERT_TRUE(security::init_station(station, validity));
+  for (const char* role : {"observer", "planner"}) {
+    auto topics = role_permissions(role, {}, false);
+    ASSERT_TRUE(topics) << topics.error().message;
+    auto added = security::add_identity(station, role, validity, topics->publish, topics->subscribe);
+    ASSERT_TRUE(added) << added.error().message;
+  }
+  // One participant at a time: Cyclone keeps one configuration per domain and process.
+  const auto open_as = [&](const std::string& identity) -> Expected<void> {
+    auto secured = security::security_xml_for({station, identity}, now);
+    if (!secured) return std::move(secured).error();
+    dds::DomainConfig config = domain->config();
+    config.cyclone_xml = security::with_security(config.cyclone_xml, *secured);
+    auto participant = dds::Participant::create(config, "foxglove");
+    if (!participant) return std::move(participant).error();
+    DdsCommandWriters writers(*participant, 4);
+    auto writer = writers.open("/dock/command", "hub_msgs/msg/DockCommand");
+    if (!writer) return std::move(writer).error();
+    return {};
+  };
+  auto observer = open_as("observer");
+  ASSERT_FALSE(observer);
+  // "create writer on 'rt/dock/command' in domain N: DDS_RETCODE_NOT_ALLOWED_BY_SECURITY (...)"
+  EXPECT_NE(observer.error().message.find("NOT_ALLOWED_BY_SECURITY"), std::string::npos)
+      << observer.error().message;
+  auto planner = open_as("planner");
+  EXPECT_TRUE(planner) << planner.error().message;
+  std::error_code ignored;
+  fs::remove_all(dir, ignored);
 }
 
 }  // namespace
