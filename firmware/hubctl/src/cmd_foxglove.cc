@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/base/utf8.h"
+
 #include "commands.h"
 #include "foxglove_bridge.h"
 #include "foxglove_commands.h"
@@ -37,14 +39,19 @@ struct FoxgloveOptions {
   bool quiet = false;
 };
 
-// Every line hubctl foxglove prints about its clients, on stderr, from either thread.
+// Every line hubctl foxglove prints about its clients, on stderr, from either thread. A line may
+// quote what a client sent (a topic it advertised): escaped as the runtime escapes outside text
+// (control characters and bytes that are no UTF-8 as \xHH), so a client cannot drive the terminal
+// of whoever reads the log.
 void log_line(std::string_view line) {
+  std::string shown(line.size() * 4, '\0');  // "\xHH" is the longest a byte becomes
+  shown.resize(append_escaped_utf8(line, shown).written);
   std::time_t now = std::time(nullptr);
   std::tm local{};
   localtime_r(&now, &local);
   char stamp[16];
   std::strftime(stamp, sizeof stamp, "%H:%M:%S", &local);
-  fmt::print(stderr, "{} foxglove: {}\n", stamp, line);
+  fmt::print(stderr, "{} foxglove: {}\n", stamp, shown);
   std::fflush(stderr);
 }
 

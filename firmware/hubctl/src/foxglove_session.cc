@@ -243,30 +243,26 @@ bool ClientSession::handle_subscribe_locked(const SubscribeRequest& request) {
   return status_locked(StatusLevel::kError, "subscribe: " + first_errors(errors));
 }
 
-void ClientSession::end_subscription_locked(std::uint32_t subscription_id) {
-  const auto sub = by_id_.find(subscription_id);
-  by_channel_.erase(sub->second);
-  by_id_.erase(sub);
-  // What was queued for it is not wanted any more.
-  for (auto it = queue_.begin(); it != queue_.end();) {
-    if (!it->is_text() && it->subscription_id == subscription_id) {
-      data_bytes_ -= it->bytes();
-      it = queue_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-}
-
 bool ClientSession::handle_unsubscribe_locked(const UnsubscribeRequest& request) {
   std::vector<std::string> errors;
+  std::set<std::uint32_t> ended;
   for (const std::uint32_t id : request.subscription_ids) {
-    if (by_id_.count(id) != 0) {
-      end_subscription_locked(id);
+    if (const auto sub = by_id_.find(id); sub != by_id_.end()) {
+      by_channel_.erase(sub->second);
+      by_id_.erase(sub);
+      ended.insert(id);
     } else if (ended_.erase(id) == 0) {
       // Ended by an unadvertise, Foxglove unsubscribes again: that is no error.
       errors.push_back(fmt::format("no subscription {}", id));
     }
+  }
+  // What was queued for them is not wanted any more: one pass over the queue for the request.
+  if (!ended.empty()) {
+    std::erase_if(queue_, [&](const OutFrame& frame) {
+      if (frame.is_text() || ended.count(frame.subscription_id) == 0) return false;
+      data_bytes_ -= frame.bytes();
+      return true;
+    });
   }
   if (errors.empty()) return false;
   return status_locked(StatusLevel::kWarning, "unsubscribe: " + first_errors(errors));

@@ -168,7 +168,6 @@ class ClientSession {
   bool handle_subscribe_locked(const SubscribeRequest& request);
   bool handle_unsubscribe_locked(const UnsubscribeRequest& request);
   bool handle_unadvertise_locked(const ClientUnadvertiseRequest& request);
-  void end_subscription_locked(std::uint32_t subscription_id);
   // Outside the lock (opens DDS writers): advertise and publish.
   bool handle_advertise(const ClientAdvertiseRequest& request);
   bool publish(const ClientMessageData& message, Time now);
