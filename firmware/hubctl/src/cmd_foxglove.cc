@@ -159,11 +159,13 @@ void add_foxglove_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--topics", options->choice.topics, "Only these topics (ROS names)");
   cmd->add_option("--regex", options->choice.regex, "Only topics whose whole ROS name matches (ECMAScript)");
   cmd->add_flag("--all", options->choice.all, "Every topic of a type this hubctl knows");
-  cmd->add_flag("--allow-publish", options->allow_publish,
-                "Let clients publish commands (on /<node_type>/command and /<hub>/command only)");
+  auto* allow =
+      cmd->add_flag("--allow-publish", options->allow_publish,
+                    "Let clients publish commands (on /<node_type>/command and /<hub>/command only)");
   cmd->add_option("--publish-origin", options->publish_origins,
                   "With --allow-publish: a web origin whose pages may publish, e.g. https://app.foxglove.dev "
-                  "(clients that send no Origin, not web pages, may)");
+                  "(clients that send no Origin, not web pages, may)")
+      ->needs(allow);
   cmd->add_option("--publish-rate", options->publish_rate, "Messages a second one client may publish")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
@@ -173,7 +175,8 @@ void add_foxglove_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--client-queue", options->client_queue,
                   "Bytes of messages held for one client that reads slowly; beyond, its messages are dropped")
       ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(std::size_t{1024}, std::size_t{1} << 30));
+      ->check(CLI::Range(std::size_t{1024}, std::size_t{1} << 30))
+      ->capture_default_str();
   cmd->add_option("--duration", options->duration_s, "Stop after this many seconds (default: until Ctrl-C)")
       ->check(CLI::Range(0.0, 1e7));
   cmd->add_flag("--quiet,-q", options->quiet, "No progress line every 10 s (client lines stay)");
