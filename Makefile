@@ -15,6 +15,9 @@
 #   make ros1-test   hubbridge between Debian's ROS 1 and the station, on the ASan build (docs/ros1-bridge.md)
 #   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
 #                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
+#   make ecosystem-test  the MCAP files hubctl record and hubd's black box write, read by the
+#                    ecosystem's JavaScript readers (@mcap/core, rosmsg2-serialization; tests/js/README.md),
+#                    and hubctl foxglove driven by the protocol's own client (@foxglove/ws-protocol)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-test the Tool ECU package installed over ssh on an arm64 VM under systemd
 #                    (tests/deploy/README.md; slow the first time: builds the VM image)
@@ -28,7 +31,7 @@ CMAKE_BUILD = cmake --build --preset
 help:
 	@sed -n '1,24p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test board deploy-test deploy-docs safety-table format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test ecosystem-test board deploy-test deploy-docs safety-table format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -99,6 +102,14 @@ ui-test:
 	@cmake --preset host-asan >/dev/null
 	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
 	@tests/ui/run --build-dir build/host-asan
+
+# The ecosystem tier (tests/js/README.md): reuses build/host-asan (builds only hubd and hubctl if the
+# default suite has not); the JavaScript packages from tests/js's lockfile (toolchain/install-js-deps).
+ecosystem-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
+	@toolchain/install-js-deps --build-dir build/host-asan
+	@tests/js/run --build-dir build/host-asan
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)

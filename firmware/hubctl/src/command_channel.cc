@@ -5,13 +5,9 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
-namespace hubrt::hubctl {
+#include "command_qos.h"
 
-dds::Qos command_qos(std::uint32_t lifespan_ms) {
-  dds::Qos qos = dds::Qos::ros2_default();
-  if (lifespan_ms > 0) qos.lifespan(std::chrono::milliseconds(lifespan_ms));
-  return qos;
-}
+namespace hubrt::hubctl {
 
 void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms) {
   cmd.add_option(
@@ -53,7 +49,7 @@ Expected<CommandChannel> CommandChannel::open(const dds::Participant& participan
   }
   auto topic = dds::UntypedTopic::create(participant, *type.descriptor, ros_topic);
   if (!topic) return std::move(topic).error();
-  auto writer = dds::UntypedWriter::create(participant, *topic);
+  auto writer = dds::UntypedWriter::create(participant, *topic, command_writer_qos());
   if (!writer) return std::move(writer).error();
   return CommandChannel(std::move(*topic), std::move(*writer));
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <dds/dds.h>
@@ -63,6 +64,15 @@ class UntypedWriter {
   // dds_time() (src/core/ddsc/src/dds_write.c, dds_writecdr / dds_forwardcdr); without a pool,
   // dds_write_ts. Errors: as write(); kInvalidArgument for a negative time.
   Status write(const void* sample, WallTime source_time) noexcept;
+
+  // Sends `serialized` — a sample as it was on the wire: the 4-byte encapsulation header and the
+  // payload, what UntypedReader::take_serialized gives and an MCAP "cdr" message holds — as it is,
+  // without decoding it into a struct and encoding it again. Cyclone checks it first as it checks a
+  // sample from the network (ddsi_serdata_from_ser_iov: header, and dds_stream_normalize: every
+  // length and enum within the type). For tools replaying recordings: allocates a serdata per call.
+  // Errors: kInvalidArgument for bytes Cyclone refuses; kFailedPrecondition for a keyed topic or
+  // one whose sertype was not found (no write pool); Cyclone's code of the write.
+  Status write_serialized(std::span<const std::uint8_t> serialized) noexcept;
 
   // Number of readers currently matched. Errors: Cyclone's code (deleted writer).
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept;
