@@ -16,5 +16,6 @@ pkg_check_modules(SYSTEMD REQUIRED IMPORTED_TARGET libsystemd)
 pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib>=0.11)
 pkg_check_modules(EVDEV REQUIRED IMPORTED_TARGET libevdev)  # RFID keyboard-wedge readers (hal/linux/rfid)
 find_package(OpenSSL REQUIRED COMPONENTS Crypto)           # operator allow-list hashes (hubs/operator_hub)
+find_package(Boost 1.74 REQUIRED)  # Boost.Beast, header-only: hubctl foxglove's WebSocket server
 # ROS 1 (hubbridge, firmware/ros1), where Debian's ROS 1 is installed.
 pkg_check_modules(ROS1 QUIET IMPORTED_TARGET roscpp topic_tools)

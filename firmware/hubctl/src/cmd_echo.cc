@@ -76,7 +76,7 @@ int run_echo(const EchoOptions& options) {
     }
     source = std::move(*opened);
   }
-  TapDecoder decoder("hubctl echo", *participant);
+  TapDecoder decoder("hubctl echo");
   std::size_t printed = 0;
   const auto deadline = std::chrono::steady_clock::now() + seconds(options.domain.timeout_s);
   while (!stop_requested() && (options.count == 0 || printed < options.count)) {

@@ -116,7 +116,7 @@ int run_watch(const WatchOptions& options) {
     }
     source = std::move(*opened);
   }
-  TapDecoder decoder("hubctl watch", *participant);
+  TapDecoder decoder("hubctl watch");
   StationWatch watch;
   const auto start = std::chrono::steady_clock::now();
   auto next_draw = start;

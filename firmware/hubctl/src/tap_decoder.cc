@@ -22,7 +22,18 @@ const void* TapDecoder::deserialize(const TapSample& sample) {
   if (topic.type == nullptr || topic.type->descriptor == nullptr) return nullptr;
   auto per_type = types_.find(topic.type);
   if (per_type == types_.end()) {
-    auto codec = dds::CdrCodec::create(*participant_, *topic.type->descriptor);
+    if (!codec_participant_) {
+      if (codec_participant_failed_) return nullptr;
+      auto participant = isolated_participant(tool_);
+      if (!participant) {
+        codec_participant_failed_ = true;  // said once: every sample would fail the same way
+        fmt::print(stderr, "{}: no participant to decode samples with: {}\n", tool_,
+                   participant.error().message);
+        return nullptr;
+      }
+      codec_participant_.emplace(std::move(*participant));
+    }
+    auto codec = dds::CdrCodec::create(*codec_participant_, *topic.type->descriptor);
     if (!codec) {
       fmt::print(stderr, "{}: {}: {}\n", tool_, topic.ros_name, codec.error().message);
       return nullptr;

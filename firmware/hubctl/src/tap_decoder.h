@@ -24,13 +24,13 @@ namespace hubrt::hubctl {
 // joining a domain. Errors: Cyclone's refusal.
 Expected<dds::Participant> isolated_participant(std::string_view name);
 
-// One per consumer. Not thread-safe. Must not outlive `participant`.
+// One per consumer. Not thread-safe.
 class TapDecoder {
  public:
-  // `tool` prefixes reports ("hubctl echo"); the codecs are made on `participant` (the live tap's,
-  // or isolated_participant() for a recording).
-  TapDecoder(std::string tool, const dds::Participant& participant)
-      : tool_(std::move(tool)), participant_(&participant) {}
+  // `tool` prefixes reports ("hubctl echo"). The codecs are made on an isolated participant of the
+  // decoder's own, never on the tap's: a codec is a topic ("hubrt_codec/<type>") and a probe
+  // writer, which a secured domain's permissions rightly refuse to an observer.
+  explicit TapDecoder(std::string tool) : tool_(std::move(tool)) {}
 
   // The sample as JSON; nullopt when it cannot be shown (said on stderr, once per topic and kind).
   std::optional<nlohmann::ordered_json> decode(const TapSample& sample);
@@ -46,7 +46,8 @@ class TapDecoder {
   SampleDecoder& decoder_of(const std::string& topic);
 
   std::string tool_;
-  const dds::Participant* participant_;
+  std::optional<dds::Participant> codec_participant_;  // made on first use; outlives the codecs
+  bool codec_participant_failed_ = false;
   std::map<const msgs::TypeInfo*, PerType> types_;
   std::map<std::string, SampleDecoder> decoders_;  // by topic
   std::map<std::string, std::uint64_t> refused_;   // samples Cyclone refused, by topic
