@@ -79,6 +79,15 @@ Status UntypedWriter::write(const void* sample) noexcept {
   if (pool_ == nullptr || sample == nullptr) return to_status(dds_write(handle_.get(), sample));
   ddsi_serdata* serdata = pool_->serialize(sample);
   if (serdata == nullptr) return to_status(DDS_RETCODE_BAD_PARAMETER);  // as dds_write's from_sample
+  if (hook_ != nullptr) {
+    // The block's bytes in place (the pool's to_ser_ref), before Cyclone holds the serdata.
+    const std::uint32_t size = ddsi_serdata_size(serdata);
+    ddsrt_iovec_t ref;
+    ddsi_serdata* held = ddsi_serdata_to_ser_ref(serdata, 0, size, &ref);
+    hook_->on_sample({static_cast<const std::uint8_t*>(ref.iov_base), static_cast<std::size_t>(ref.iov_len)},
+                     WallTime{});
+    ddsi_serdata_to_ser_unref(held, &ref);
+  }
   const dds_return_t rc = dds_writecdr(handle_.get(), serdata);
   // dds_writecdr consumes the serdata's reference once it has locked the writer; when it cannot
   // (a deleted or wrong handle: dds_write.c, dds_writer_lock) it returns with the reference ours.
