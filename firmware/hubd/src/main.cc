@@ -51,6 +51,7 @@ struct Options {
   bool check_only = false;
   bool safe_outputs = false;
   bool realtime = false;
+  bool no_black_box = false;
   int realtime_priority = kDefaultRealtimePriority;
   std::string security_dir;  // DDS Security, overriding the hub file's security: section
   std::string identity;
@@ -219,7 +220,7 @@ int run(const Options& options) {
   // After --check returned: a check joins no network, so it has no twin to collide with.
   request.twin_check = std::chrono::milliseconds(options.twin_check_ms);
   request.request_stop = [&runner] { runner->request_stop(); };
-  request.black_box_directory = default_black_box_directory();
+  if (!options.no_black_box) request.black_box_directory = default_black_box_directory();
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
@@ -335,6 +336,9 @@ int main(int argc, char** argv) {
                  "check ends earlier once discovery has been quiet for 15 ms and no hub of an older hubrt "
                  "is on the domain (0: no start-up check; a twin is still caught while running)")
       ->check(CLI::Range(0, 60000));
+  app.add_flag("--no-black-box", options.no_black_box,
+               "Run without the black box, whatever the hub file's blackbox: section says (what the "
+               "benchmark compares the black box's cost with)");
   app.add_flag("--realtime", options.realtime,
                "Run the cycle (and every thread of hubd) under SCHED_FIFO and lock its memory "
                "(mlockall); refused with exit status 2 where not permitted (needs CAP_SYS_NICE or "
