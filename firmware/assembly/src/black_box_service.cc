@@ -64,24 +64,36 @@ Expected<std::unique_ptr<BlackBoxService>> BlackBoxService::start(const dds::Par
                                                                   const std::string& hub_name,
                                                                   std::shared_ptr<spdlog::logger> log) {
   std::unique_ptr<BlackBoxService> service(new BlackBoxService(box, std::move(log)));
-  auto request_topic =
-      dds::Topic<KeyValue>::create(participant, black_box_request_topic(ros_namespace, hub_name));
-  if (!request_topic) return std::move(request_topic).error();
-  auto reply_topic =
-      dds::Topic<KeyValue>::create(participant, black_box_reply_topic(ros_namespace, hub_name));
-  if (!reply_topic) return std::move(reply_topic).error();
   BlackBoxService* self = service.get();
-  // A flood keeps only the last few requests: the history is all a peer can make the hub hold.
-  auto reader = dds::Reader<KeyValue>::create(participant, *request_topic,
-                                              dds::Qos::ros2_default(kRequestsPerRound), [self] {
-                                                self->requests_ = true;
-                                                self->wake();
-                                              });
-  if (!reader) return std::move(reader).error();
-  auto writer = dds::Writer<KeyValue>::create(participant, *reply_topic);
-  if (!writer) return std::move(writer).error();
-  service->endpoints_ = std::make_unique<Endpoints>(Endpoints{
-      std::move(*request_topic), std::move(*reply_topic), std::move(*reader), std::move(*writer), {}});
+  auto endpoints = [&]() -> Expected<std::unique_ptr<Endpoints>> {
+    auto request_topic =
+        dds::Topic<KeyValue>::create(participant, black_box_request_topic(ros_namespace, hub_name));
+    if (!request_topic) return std::move(request_topic).error();
+    auto reply_topic =
+        dds::Topic<KeyValue>::create(participant, black_box_reply_topic(ros_namespace, hub_name));
+    if (!reply_topic) return std::move(reply_topic).error();
+    // A flood keeps only the last few requests: the history is all a peer can make the hub hold.
+    auto reader = dds::Reader<KeyValue>::create(participant, *request_topic,
+                                                dds::Qos::ros2_default(kRequestsPerRound), [self] {
+                                                  self->requests_ = true;
+                                                  self->wake();
+                                                });
+    if (!reader) return std::move(reader).error();
+    auto writer = dds::Writer<KeyValue>::create(participant, *reply_topic);
+    if (!writer) return std::move(writer).error();
+    return std::make_unique<Endpoints>(Endpoints{
+        std::move(*request_topic), std::move(*reply_topic), std::move(*reader), std::move(*writer), {}});
+  }();
+  if (endpoints) {
+    service->endpoints_ = std::move(*endpoints);
+  } else {
+    // E.g. DDS Security permissions made before the black box had topics: the hub runs, and its
+    // black box is still written on faults, on exit and on a crash.
+    service->log_->warn(
+        "black box: requests over DDS unavailable ({}); it is still written on faults, exits and "
+        "crashes",
+        endpoints.error().message);
+  }
   service->thread_ = std::thread([self] { self->run(); });
   return service;
 }
@@ -111,6 +123,7 @@ std::unique_ptr<runtime::CycleStage> BlackBoxService::make_stage(const runtime::
 }
 
 bool BlackBoxService::serve_requests() {
+  if (!endpoints_) return false;
   std::optional<SteadyClock::time_point>& last_dump = last_request_dump_;
   std::string& last_path = last_request_path_;
   for (int n = 0; n < kRequestsPerRound; ++n) {

@@ -47,10 +47,14 @@ int run_echo(const EchoOptions& options) {
     return kExitUsage;
   }
   const bool live = options.from.empty();
-  auto participant = live ? join_domain(options.domain, "hubctl") : isolated_participant("hubctl");
-  if (!participant) {
-    fmt::print(stderr, "hubctl echo: {}\n", participant.error().message);
-    return kExitUsage;
+  std::optional<dds::Participant> participant;
+  if (live) {
+    auto joined = join_domain(options.domain, "hubctl");
+    if (!joined) {
+      fmt::print(stderr, "hubctl echo: {}\n", joined.error().message);
+      return kExitUsage;
+    }
+    participant.emplace(std::move(*joined));
   }
   std::unique_ptr<StationTap> tap;
   std::unique_ptr<TapSource> source;
@@ -76,7 +80,7 @@ int run_echo(const EchoOptions& options) {
     }
     source = std::move(*opened);
   }
-  TapDecoder decoder("hubctl echo", *participant);
+  TapDecoder decoder("hubctl echo");
   std::size_t printed = 0;
   const auto deadline = std::chrono::steady_clock::now() + seconds(options.domain.timeout_s);
   while (!stop_requested() && (options.count == 0 || printed < options.count)) {

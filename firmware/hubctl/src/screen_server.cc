@@ -146,7 +146,7 @@ class DdsSide {
   DdsSide(dds::Participant participant, const ServeOptions& options)
       : participant_(std::move(participant)),
         operator_state_(options.operator_state),
-        state_decoder_("hubctl serve", participant_),
+        state_decoder_("hubctl serve"),
         decoder_("hubctl serve", options.instruction_topic) {}
 
   dds::Participant participant_;

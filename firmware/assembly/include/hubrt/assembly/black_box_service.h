@@ -41,7 +41,9 @@ std::string black_box_reply_topic(const std::string& ros_namespace, const std::s
 class BlackBoxService {
  public:
   // Makes the request reader and reply writer on `participant` and starts the thread. `box` and
-  // `participant` must outlive the service. Errors: the DDS entities (Cyclone's reason).
+  // `participant` must outlive the service. When the DDS entities cannot be made (Cyclone refuses,
+  // e.g. DDS Security permissions that do not name them) it says so in the log and serves no
+  // requests: faults are still written. Errors: none today (kept for a thread that cannot start).
   static Expected<std::unique_ptr<BlackBoxService>> start(const dds::Participant& participant,
                                                           blackbox::BlackBox& box,
                                                           const std::string& ros_namespace,
