@@ -21,14 +21,16 @@
 #   make deploy-test the Tool ECU package installed over ssh on an arm64 VM under systemd
 #                    (tests/deploy/README.md; slow the first time: builds the VM image)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
+#   make safety-table run the tests that measure time to safe (and the net tier: root), then
+#                    regenerate docs/safety.md's table from what they wrote (build/host-asan)
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
 JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,24p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,26p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test ecosystem-test board deploy-test deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test ecosystem-test board deploy-test deploy-docs safety-table format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -110,6 +112,16 @@ ecosystem-test: deps
 
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
+
+# docs/safety.md's time-to-safe table (issue 29): the tests that measure it write their rows into
+# build/host-asan/time-to-safe/, the net tier its partition rows (needs root), then the generator.
+SAFETY_TESTS = hubrt_clock_step_test|hubrt_rsp_ecu_device_vanish_test|hubrt_hubd_stale_after_stop_test|hubrt_hubd_heartbeat_holds_test|hubrt_hubd_planner_gone_test
+safety-table: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS)
+	@ctest --preset host-asan -R '^($(SAFETY_TESTS))$$'
+	@tests/net/run --build-dir build/host-asan
+	@toolchain/time-to-safe-table --build-dir build/host-asan
 
 # The net tier: the programs of the ASan build (after `make test` nothing is rebuilt).
 net-test: deps

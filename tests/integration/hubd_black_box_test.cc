@@ -17,8 +17,7 @@
 #include "hubrt/mcap/summary.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
-
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -26,6 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using std::chrono::seconds;
 using test_support::ChildProcess;
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 
 // Start-up and discovery under sanitizers on a loaded 2-core machine; only reached when broken.
 constexpr auto kPatience = seconds(60);

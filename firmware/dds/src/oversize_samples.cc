@@ -14,13 +14,19 @@ constexpr std::string_view kDropPrefix = "dropping oversize (";
 
 std::atomic<std::uint64_t> g_dropped{0};
 std::atomic<bool> g_installed{false};
+std::atomic<CycloneLogForward> g_forward{nullptr};
 
 // dds_log_write_fn_t. `data->message` is preceded by `data->hdrsize` bytes of header and
 // followed by a newline: what Cyclone's default sink (src/ddsrt/src/log.c, default_sink) writes.
 void count_and_forward(void* /*arg*/, const dds_log_data_t* data) {
   if ((data->priority & DDS_LC_WARNING) != 0 && is_oversize_drop_message({data->message, data->size}))
     g_dropped.fetch_add(1, std::memory_order_relaxed);
-  (void)std::fwrite(data->message - data->hdrsize, 1, data->hdrsize + data->size + 1, stderr);
+  const std::string_view line(data->message - data->hdrsize, data->hdrsize + data->size + 1);
+  if (const CycloneLogForward forward = g_forward.load(std::memory_order_acquire); forward != nullptr) {
+    forward(line);
+    return;
+  }
+  (void)std::fwrite(line.data(), 1, line.size(), stderr);
   (void)std::fflush(stderr);
 }
 
@@ -37,6 +43,10 @@ void count_oversize_samples() noexcept {
   dds_set_log_sink(&count_and_forward, nullptr);
   // Warnings are in Cyclone's default log mask; make sure they stay there.
   dds_set_log_mask(dds_get_log_mask() | DDS_LC_WARNING);
+}
+
+void forward_cyclone_log(CycloneLogForward forward) noexcept {
+  g_forward.store(forward, std::memory_order_release);
 }
 
 bool oversize_samples_counted() noexcept {

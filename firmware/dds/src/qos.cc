@@ -162,6 +162,11 @@ Qos& Qos::keep_last(std::int32_t depth) {
   return *this;
 }
 
+Qos& Qos::lifespan(Duration lifespan) {
+  dds_qset_lifespan(qos_, lifespan.count());
+  return *this;
+}
+
 Qos& Qos::keep_all() {
   dds_qset_history(qos_, DDS_HISTORY_KEEP_ALL, DDS_LENGTH_UNLIMITED);
   return *this;

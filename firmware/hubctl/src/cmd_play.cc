@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "command_channel.h"
 #include "commands.h"
 #include "recording_player.h"
 #include "scenario.h"
@@ -28,6 +29,7 @@ struct PlayCommandOptions {
   int rounds = 1;
   bool quiet = false;
   bool check_only = false;
+  std::uint32_t lifespan_ms = kDefaultCommandLifespanMs;
 };
 
 int run_recording(const PlayCommandOptions& options) {
@@ -48,6 +50,7 @@ int run_recording(const PlayCommandOptions& options) {
   play.choice = options.topics;
   play.discovery_timeout = seconds(options.domain.timeout_s);
   play.quiet = options.quiet;
+  play.command_lifespan_ms = options.lifespan_ms;
   return play_recording(*participant, play, stdout);
 }
 
@@ -77,6 +80,7 @@ int run_play(const PlayCommandOptions& options) {
   play.discovery_timeout = seconds(options.domain.timeout_s);
   play.rounds = options.rounds;
   play.quiet = options.quiet;
+  play.command_lifespan_ms = options.lifespan_ms;
   ScenarioRunner runner(*participant, *scenario, play, stdout);
   switch (runner.run()) {
     case PlayOutcome::kPassed:
@@ -119,6 +123,7 @@ void add_play_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 1'000'000));
   cmd->add_flag("--quiet,-q", options->quiet, "Report failures and the summary only");
   cmd->add_flag("--check", options->check_only, "Only load and check the file (a scenario)");
+  add_lifespan_option(*cmd, options->lifespan_ms);
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_play(*options); });
 }

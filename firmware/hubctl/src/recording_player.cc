@@ -11,7 +11,7 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/mcap/records.h"
 
-#include "command_qos.h"
+#include "command_channel.h"
 #include "reader_wait.h"
 #include "recording_source.h"
 #include "session.h"
@@ -27,21 +27,22 @@ struct PlayedTopic {
   std::uint64_t refused = 0;
 };
 
-// Commands as hubctl sends them; other topics as their writers offered (the first one's).
-dds::Qos qos_for(const TapTopic& topic) {
-  if (topic.type != nullptr && is_command_type(*topic.type)) return command_writer_qos();
+// Commands as hubctl sends them (with their LIFESPAN); other topics as their writers offered (the
+// first one's).
+dds::Qos qos_for(const TapTopic& topic, std::uint32_t command_lifespan_ms) {
+  if (topic.type != nullptr && is_command_type(*topic.type)) return command_qos(command_lifespan_ms);
   if (topic.offered.empty()) return dds::Qos::ros2_default();
   return dds::Qos::from_offered(topic.offered.front());
 }
 
-Expected<std::unique_ptr<PlayedTopic>> open_topic(const dds::Participant& participant,
-                                                  const TapTopic& topic) {
+Expected<std::unique_ptr<PlayedTopic>> open_topic(const dds::Participant& participant, const TapTopic& topic,
+                                                  std::uint32_t command_lifespan_ms) {
   auto played = std::make_unique<PlayedTopic>();
   played->ros_name = topic.ros_name;
   auto t = dds::UntypedTopic::create(participant, *topic.type->descriptor, topic.ros_name);
   if (!t) return std::move(t).error();
   played->topic.emplace(std::move(*t));
-  auto w = dds::UntypedWriter::create(participant, *played->topic, qos_for(topic));
+  auto w = dds::UntypedWriter::create(participant, *played->topic, qos_for(topic, command_lifespan_ms));
   if (!w) return std::move(w).error();
   played->writer.emplace(std::move(*w));
   return played;
@@ -89,7 +90,7 @@ int play_recording(const dds::Participant& participant, const RecordingPlayOptio
     }
     const TapTopic& topic = *event->topic;
     if (event->kind == TapEvent::Kind::kTopic) {
-      auto opened = open_topic(participant, topic);
+      auto opened = open_topic(participant, topic, options.command_lifespan_ms);
       if (!opened) {
         fmt::print(stderr, "hubctl play: {}: {}; not played\n", topic.ros_name, opened.error().message);
         continue;

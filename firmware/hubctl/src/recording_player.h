@@ -2,7 +2,9 @@
 // (or `rate` times it) — by default its commands, so that a planner's session recorded at the
 // station re-runs against the simulated one; any topics chosen otherwise. Each message goes out as
 // the bytes that were recorded (UntypedWriter::write_serialized); commands with hubctl's command
-// QoS (command_qos.h), other topics with the QoS their recorded writers offered.
+// QoS (command_channel.h: command_qos, with --lifespan-ms), other topics with the QoS their recorded
+// writers offered. A replayed command's DDS source timestamp is when it is replayed, so its age
+// (and LIFESPAN) count from then.
 #pragma once
 
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include "hubrt/base/time.h"
 #include "hubrt/dds/participant.h"
 
+#include "command_channel.h"
 #include "tap_selection.h"
 
 namespace hubrt::hubctl {
@@ -25,6 +28,7 @@ struct RecordingPlayOptions {
   TapChoice choice;  // nothing chosen: the commands
   Duration discovery_timeout = std::chrono::seconds(5);
   bool quiet = false;
+  std::uint32_t command_lifespan_ms = kDefaultCommandLifespanMs;
 };
 
 // True when `path` holds an MCAP file (its magic), whatever its name. Never throws.

@@ -9,7 +9,8 @@
 
 namespace hubrt::msgs {
 
-// Defined in the source generated from the .msg files (hubrt_add_msg_definitions).
+// Defined by the program's message registry over the .msg texts of its message targets
+// (hubrt_messages_write_registry_source: hubrt_msgs_all, or a board program's own).
 std::span<const MsgDefinition> generated_msg_definitions() noexcept;
 
 namespace {

@@ -63,6 +63,17 @@ class Qos {
   Qos& transient_local();
   Qos& keep_last(std::int32_t depth);
   Qos& keep_all();
+  // LIFESPAN (a writer's QoS, announced to its readers): a sample older than `lifespan` is
+  // dropped instead of delivered. Cyclone 0.10.2 measures the age on each side's monotonic clock,
+  // not from the source timestamp: the writer drops an unacknowledged sample from its history
+  // `lifespan` after writing it (src/core/ddsi/src/q_transmit.c, insert_sample_in_whc: expiry =
+  // serdata->twrite + lifespan), so it is never retransmitted later (a healed partition); a reader
+  // drops a sample not taken `lifespan` after it *received* it (q_receive.c, deliver_user_data ->
+  // ddsi_endpoint.c, ddsi_make_writer_info: lifespan_exp = ddsrt_time_monotonic() + lifespan).
+  // So it does not protect against a sample that waited in a stopped reader's socket (received
+  // only when the reader runs again) nor against skewed clocks: hubd judges the source timestamp
+  // itself (runtime/command_age.h). Precondition: lifespan > 0.
+  Qos& lifespan(Duration lifespan);
 
   // For Cyclone calls; valid while this Qos lives.
   [[nodiscard]] const dds_qos_t* get() const noexcept { return qos_; }

@@ -58,6 +58,13 @@ class UntypedWriter {
   // reliable write stayed blocked (never with keep-last); kInvalidArgument for a deleted writer or
   // a sample that does not serialise (e.g. an enum out of range).
   Status write(const void* sample) noexcept;
+  // As write(), with `source_time` as the sample's source timestamp instead of this host's clock
+  // now: for tools that test how a reader judges a command's age (hubctl send --stamp-offset).
+  // Cyclone 0.10.2 has no dds_writecdr_ts: the pooled sample is stamped by hand and written with
+  // dds_forwardcdr, which keeps the serdata's timestamp where dds_writecdr overwrites it with
+  // dds_time() (src/core/ddsc/src/dds_write.c, dds_writecdr / dds_forwardcdr); without a pool,
+  // dds_write_ts. Errors: as write(); kInvalidArgument for a negative time.
+  Status write(const void* sample, WallTime source_time) noexcept;
 
   // Sends `serialized` — a sample as it was on the wire: the 4-byte encapsulation header and the
   // payload, what UntypedReader::take_serialized gives and an MCAP "cdr" message holds — as it is,
@@ -108,6 +115,8 @@ class UntypedWriter {
  private:
   static void on_publication_matched(dds_entity_t writer, dds_publication_matched_status_t status,
                                      void* arg) noexcept;
+  // Shows the hook (if any) a serialised sample of the pool.
+  void show_hook(struct ddsi_serdata* serdata, WallTime source_time) noexcept;
 
   // What the publication-matched listener updates; heap-held so that it stays in place when the
   // writer moves (Cyclone keeps a pointer to it until the writer is deleted).
@@ -152,6 +161,7 @@ class Writer {
 
   // As UntypedWriter::write; `sample` may point its strings into caller-owned fixed buffers.
   Status write(const T& sample) noexcept { return writer_.write(&sample); }
+  Status write(const T& sample, WallTime source_time) noexcept { return writer_.write(&sample, source_time); }
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept { return writer_.matched_readers(); }
   std::uint64_t take_new_readers() noexcept { return writer_.take_new_readers(); }
   [[nodiscard]] bool has_matched_readers() const noexcept { return writer_.has_matched_readers(); }
