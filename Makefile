@@ -16,7 +16,8 @@
 #   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
 #                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
 #   make ecosystem-test  the MCAP files hubctl record and hubd's black box write, read by the
-#                    ecosystem's JavaScript readers (@mcap/core, rosmsg2-serialization; tests/js/README.md)
+#                    ecosystem's JavaScript readers (@mcap/core, rosmsg2-serialization; tests/js/README.md),
+#                    and hubctl foxglove driven by the protocol's own client (@foxglove/ws-protocol)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-test the Tool ECU package installed over ssh on an arm64 VM under systemd
 #                    (tests/deploy/README.md; slow the first time: builds the VM image)

@@ -13,10 +13,11 @@
 #include "hubrt/dds/topic.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
 namespace {
+
 
 using dock_ecu::DockCommand;
 using std::chrono::milliseconds;

@@ -11,16 +11,17 @@
 
 #include "hubrt/mcap/linear_reader.h"
 #include "hubrt/mcap/summary.h"
+
 #include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
 namespace {
 
+using test_support::HubProcess;
+
 namespace fs = std::filesystem;
 using std::chrono::seconds;
 using test_support::ChildProcess;
-using test_support::HubProcess;
-using test_support::HubProcessOptions;
 
 // Generous: hubd and hubctl under sanitizers on a loaded 2-core machine start in seconds.
 constexpr auto kPatience = seconds(60);

@@ -27,10 +27,10 @@
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/time_to_safe.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -118,9 +118,9 @@ class HubdHeartbeatHoldsTest : public ::testing::TestWithParam<Hazard> {
   // hubd with its stderr on the hazard's file: a pipe whose reading end this test keeps open and
   // never reads, /dev/full, or files (the stopped-subscriber case).
   void start_hub() {
-    std::vector<std::string> args = {"-c",      "",         "sh",          HUBRT_HUBD_PATH,
-                                     "--board", "host-sim", "--hub",       "dock_ecu",
-                                     "--rate",  "100",      "--log-level", "debug"};
+    const std::string hubd = test_support::hubd_path();
+    std::vector<std::string> args = {"-c",    "",         "sh",     hubd,  "--board",     "host-sim",
+                                     "--hub", "dock_ecu", "--rate", "100", "--log-level", "debug"};
     switch (GetParam()) {
       case Hazard::kStalledLogPipe: {
         std::array<int, 2> fds{-1, -1};

@@ -15,10 +15,13 @@
 #include "hubrt/test_support/time_to_safe.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
 namespace {
+
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 
 using dock_ecu::DockState;
 using std::chrono::milliseconds;

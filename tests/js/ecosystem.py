@@ -12,7 +12,8 @@ planner commanding the dock (hubctl send at 10 Hz), and
     (read up to its last whole chunk, the indexed reader refusing it) and hubctl record --recover
     (whole again, with as many messages as the whole chunks held);
   - the black box of the Dock ECU asked for with hubctl blackbox (the echoed States and commands in
-    it), and both hubs' black boxes written as SIGTERM stops them, judged the same way.
+    it), and both hubs' black boxes written as SIGTERM stops them at the end, judged the same way.
+Then hubctl foxglove, driven by the Foxglove WebSocket protocol's own client (foxglove_live.py).
 Exit status 0 passed, 1 failed. python3's standard library only; node runs the judge.
 """
 import argparse
@@ -26,6 +27,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from tier import PATIENCE_S, Failed, Processes, acquire_domain  # noqa: E402
+import foxglove_live  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -206,6 +208,7 @@ def run(args):
         black_box(tier)
         compressions_and_splits(tier)
         killed_and_recovered(tier)
+        foxglove_live.run(tier)
         exit_boxes(tier)
     finally:
         tier.procs.stop_all()

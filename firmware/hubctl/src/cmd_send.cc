@@ -15,6 +15,7 @@
 #include "hubrt/msgs/set_field.h"
 
 #include "command_channel.h"
+#include "command_qos.h"
 #include "commands.h"
 #include "reader_wait.h"
 #include "render.h"
@@ -93,7 +94,7 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: {}\n", topic.error().message);
     return kExitFailed;
   }
-  auto writer = dds::UntypedWriter::create(*participant, *topic, command_qos(options.lifespan_ms));
+  auto writer = dds::UntypedWriter::create(*participant, *topic, command_writer_qos(options.lifespan_ms));
   if (!writer) {
     fmt::print(stderr, "hubctl send: {}\n", writer.error().message);
     return kExitFailed;

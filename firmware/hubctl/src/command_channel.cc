@@ -7,12 +7,6 @@
 
 namespace hubrt::hubctl {
 
-dds::Qos command_qos(std::uint32_t lifespan_ms) {
-  dds::Qos qos = dds::Qos::ros2_default();
-  if (lifespan_ms > 0) qos.lifespan(std::chrono::milliseconds(lifespan_ms));
-  return qos;
-}
-
 void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms) {
   cmd.add_option(
          "--lifespan-ms", lifespan_ms,

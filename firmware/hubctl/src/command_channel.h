@@ -15,19 +15,11 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/msgs/type_info.h"
 
+#include "command_qos.h"
 #include "conformance_profile.h"
 
 namespace hubrt::hubctl {
 
-// The LIFESPAN hubctl's command writers give their samples unless told otherwise (--lifespan-ms):
-// the hub file's default command timeout (command_timeout_ms, 1000 ms), because a command older
-// than its node's timeout can never act (runtime/command_age.h). For a hub configured with another
-// timeout, pass its command_timeout_ms (every hub publishes it in /diagnostics). What LIFESPAN
-// does and does not protect: dds::Qos::lifespan, docs/interop.md.
-inline constexpr std::uint32_t kDefaultCommandLifespanMs = 1000;
-
-// ROS 2's default QoS (reliable, volatile, keep-last 10) with LIFESPAN `lifespan_ms` (none: 0).
-dds::Qos command_qos(std::uint32_t lifespan_ms);
 // Adds --lifespan-ms (default kDefaultCommandLifespanMs) to a command that writes commands.
 void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms);
 

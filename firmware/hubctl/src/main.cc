@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   hubrt::hubctl::add_net_config_command(app, exit_code);
   hubrt::hubctl::add_security_command(app, exit_code);
   hubrt::hubctl::add_serve_command(app, exit_code);
+  hubrt::hubctl::add_foxglove_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,7 +11,7 @@
 #include "hubrt/dds/writer.h"
 #include "hubrt/mcap/records.h"
 
-#include "command_channel.h"
+#include "command_qos.h"
 #include "reader_wait.h"
 #include "recording_source.h"
 #include "session.h"
@@ -27,10 +27,9 @@ struct PlayedTopic {
   std::uint64_t refused = 0;
 };
 
-// Commands as hubctl sends them (with their LIFESPAN); other topics as their writers offered (the
-// first one's).
+// Commands as hubctl sends them; other topics as their writers offered (the first one's).
 dds::Qos qos_for(const TapTopic& topic, std::uint32_t command_lifespan_ms) {
-  if (topic.type != nullptr && is_command_type(*topic.type)) return command_qos(command_lifespan_ms);
+  if (topic.type != nullptr && is_command_type(*topic.type)) return command_writer_qos(command_lifespan_ms);
   if (topic.offered.empty()) return dds::Qos::ros2_default();
   return dds::Qos::from_offered(topic.offered.front());
 }

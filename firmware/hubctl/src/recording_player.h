@@ -2,9 +2,7 @@
 // (or `rate` times it) — by default its commands, so that a planner's session recorded at the
 // station re-runs against the simulated one; any topics chosen otherwise. Each message goes out as
 // the bytes that were recorded (UntypedWriter::write_serialized); commands with hubctl's command
-// QoS (command_channel.h: command_qos, with --lifespan-ms), other topics with the QoS their recorded
-// writers offered. A replayed command's DDS source timestamp is when it is replayed, so its age
-// (and LIFESPAN) count from then.
+// QoS (command_qos.h), other topics with the QoS their recorded writers offered.
 #pragma once
 
 #include <cstdio>
@@ -15,7 +13,7 @@
 #include "hubrt/base/time.h"
 #include "hubrt/dds/participant.h"
 
-#include "command_channel.h"
+#include "command_qos.h"
 #include "tap_selection.h"
 
 namespace hubrt::hubctl {
@@ -28,7 +26,7 @@ struct RecordingPlayOptions {
   TapChoice choice;  // nothing chosen: the commands
   Duration discovery_timeout = std::chrono::seconds(5);
   bool quiet = false;
-  std::uint32_t command_lifespan_ms = kDefaultCommandLifespanMs;
+  std::uint32_t command_lifespan_ms = kDefaultCommandLifespanMs;  // the commands' LIFESPAN (0: none)
 };
 
 // True when `path` holds an MCAP file (its magic), whatever its name. Never throws.

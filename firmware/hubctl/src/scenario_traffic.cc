@@ -10,6 +10,7 @@
 #include "hubrt/msgs/all_types.h"
 
 #include "command_channel.h"
+#include "command_qos.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -114,7 +115,7 @@ Expected<WriterEntry*> ScenarioTraffic::writer(const std::string& topic, const m
 }
 
 Expected<WriterEntry*> ScenarioTraffic::command_writer(const std::string& topic, const msgs::TypeInfo& type) {
-  return writer_with(topic, type, 1, command_qos(command_lifespan_ms_));
+  return writer_with(topic, type, 1, command_writer_qos(command_lifespan_ms_));
 }
 
 Expected<WriterEntry*> ScenarioTraffic::writer_with(const std::string& topic, const msgs::TypeInfo& type,

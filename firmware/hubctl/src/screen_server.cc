@@ -19,6 +19,7 @@
 #include "hubrt/msgs/json.h"
 
 #include "confirm_gate.h"
+#include "listen_address.h"
 #include "screen_format.h"
 #include "station_tap.h"
 #include "station_watch.h"
@@ -46,29 +47,6 @@ struct Shared {
   std::optional<screen::Instruction> instruction;
   bool stopping = false;
 };
-
-struct Endpoint {
-  std::string address;
-  int port = 0;
-};
-
-Expected<Endpoint> parse_listen(const std::string& text) {
-  const auto colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0)
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--listen '{}': expected ADDR:PORT", text));
-  Endpoint e;
-  e.address = text.substr(0, colon);
-  if (e.address.size() > 2 && e.address.front() == '[' && e.address.back() == ']')
-    e.address = e.address.substr(1, e.address.size() - 2);
-  try {
-    std::size_t used = 0;
-    e.port = std::stoi(text.substr(colon + 1), &used);
-    if (used != text.size() - colon - 1 || e.port < 0 || e.port > 65535) throw std::out_of_range("port");
-  } catch (const std::exception&) {
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--listen '{}': bad port", text));
-  }
-  return e;
-}
 
 // The DDS side: discovery, the instruction, the confirm writer.
 class DdsSide {
