@@ -29,7 +29,7 @@ JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,24p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,26p' Makefile | sed 's/^# \{0,1\}//'
 
 .PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test ecosystem-test board deploy-test deploy-docs safety-table format format-check lint
 

@@ -15,6 +15,7 @@ from report_echo import echo_section  # the command -> echo section (issue 16 po
 from report_ros1 import ros1_section  # the ROS 1 ECU / hubbridge section (issue 14)
 import report_rss  # memory: where the RSS goes, the board build's row (issue 16 point 3)
 from report_scale import scale_section  # many hubs on one host (issue 16 point 6)
+from report_blackbox import blackbox_section  # bench/report_blackbox.py, next to this file
 from report_security import security_section  # bench/report_security.py, next to this file
 from report_size import size_section  # the board hubd's stripped size (issue 16 point 3)
 from report_startup import startup_section  # start -> first State (issue 16 point 2)
@@ -393,6 +394,7 @@ def main():
     scale_section(report, load(args.results, "scale.json"))
     ros1_section(report, load(args.results, "ros1.json"))
     security_section(report.sections, load(args.results, "security.json"))
+    blackbox_section(report.sections, load(args.results, "blackbox.json"))
     size_section(report, load(args.results, "size.json"))
     report_rss.target_rss_aims(report, load(args.results, "rss_boards.json"))
     drew = picture(args.results, args.picture)

@@ -1,6 +1,7 @@
 // The Dock ECU assembled in the test's process on the simulated board (the fake backend and the
-// sim bridge of hubrt_assembly_sim), at `rate_hz`, in the test's own domain: what the in-process
-// allocation and cadence tests drive cycle by cycle.
+// sim bridge of hubrt_assembly_sim), at `rate_hz`, in the test's own domain, with its black box
+// recording as in hubd (into a folder of the domain's): what the in-process allocation and cadence
+// tests drive cycle by cycle.
 #pragma once
 
 #include <memory>
@@ -21,6 +22,7 @@ inline Expected<std::unique_ptr<assembly::AssembledHub>> assemble_sim_dock(
   request.simulation = &assembly::fake_simulation();
   request.domain = domain.config();
   request.rate_hz = rate_hz;
+  request.black_box_directory = "/tmp/hubrt-blackbox-test-" + std::to_string(domain.config().domain_id);
   return assembly::assemble_hub(request, clock);
 }
 

@@ -1,5 +1,6 @@
 // Issue 16, point 1: a hub allocates nothing per steady-state cycle in its whole process (every
-// thread: the cycle's and Cyclone's receive, delivery, timed-event and gc threads), with the real
+// thread: the cycle's and Cyclone's receive, delivery, timed-event and gc threads, the black box's),
+// with its black box recording every command and State (issue 30), with the real
 // assembly (board + hub file, fake backend with its sim bridge, real State types, real DDS writers,
 // /diagnostics), a subscriber in another process (hubctl echo, which also shows the State still
 // decodes) and a planner in another process repeating one command at 100 Hz (hubctl send).
@@ -149,6 +150,9 @@ TEST(HubProcessAllocations, NoneInSteadyStateWithSubscriberAndPlannerInOtherProc
   }
   EXPECT_TRUE(clean_window) << "no window of " << kMeasuredCycles
                             << " cycles without a heap allocation in the whole process";
+  // With the black box on: every State and command went through its hooks into its ring.
+  ASSERT_NE((*assembled)->black_box, nullptr);
+  EXPECT_GE((*assembled)->black_box->ring().recorded(), published);
 }
 
 }  // namespace

@@ -11,7 +11,8 @@ planner commanding the dock (hubctl send at 10 Hz), and
   - lz4 chunks; --max-duration 1 (each part complete on its own); a recorder killed with SIGKILL
     (read up to its last whole chunk, the indexed reader refusing it) and hubctl record --recover
     (whole again, with as many messages as the whole chunks held);
-  - the black box of the Dock ECU asked for with hubctl blackbox, judged the same way.
+  - the black box of the Dock ECU asked for with hubctl blackbox (the echoed States and commands in
+    it), and both hubs' black boxes written as SIGTERM stops them at the end, judged the same way.
 Then hubctl foxglove, driven by the Foxglove WebSocket protocol's own client (foxglove_live.py).
 Exit status 0 passed, 1 failed. python3's standard library only; node runs the judge.
 """
@@ -53,6 +54,7 @@ class Tier:
         self.env.pop("CYCLONEDDS_URI", None)
         self.env["HUBRT_CONFIG_DIR"] = self.source
         self.env["ROS_DOMAIN_ID"] = str(self.domain)
+        self.env["HUBRT_BLACKBOX_DIR"] = os.path.join(self.out, "blackbox")
         self.procs = Processes(self.out)
 
     def path(self, name):
@@ -172,14 +174,42 @@ def killed_and_recovered(tier):
     log(f"killed recorder: {cut['messages']} messages in whole chunks, all of them in the recovered file")
 
 
+def black_box(tier):
+    """The Dock ECU's black box, asked for while the echoed States are within its last minute: every
+    State echoed in the first step is in it, field by field; the hubs' exit boxes come at the end."""
+    asked = tier.path("blackbox.log")
+    tier.finish("blackbox", tier.hubctl("blackbox", ["blackbox", "dock_ecu", "--timeout", "30"], stdout=asked))
+    files = glob.glob(os.path.join(tier.out, "blackbox", "dock_ecu_*_request.mcap"))
+    if len(files) != 1:
+        raise Failed(f"hubctl blackbox dock_ecu: {len(files)} files in {tier.out}/blackbox")
+    report = tier.judge(files[0], "--echo", f"/dock_ecu/dock/state={tier.path('echo_0.jsonl')}",
+                        "--echo", f"/dock/command={tier.path('echo_2.jsonl')}")
+    log(f"black box on request: {report['messages']} messages, every echoed State and command in it")
+
+
+def exit_boxes(tier):
+    """The hubs stop (SIGTERM): each writes its last minute, which the judge reads too."""
+    for hub in ("dock_ecu", "rsp_ecu"):
+        for name, child, _ in tier.procs.children:
+            if name == hub:
+                child.send_signal(signal.SIGTERM)
+                tier.finish(hub, child)
+        files = glob.glob(os.path.join(tier.out, "blackbox", f"{hub}_*_exit-SIGTERM.mcap"))
+        if len(files) != 1:
+            raise Failed(f"{hub} stopped by SIGTERM left {len(files)} black boxes")
+        tier.judge(files[0])
+
+
 def run(args):
     tier = Tier(args)
     try:
         station(tier)
         record_beside_echo(tier)
+        black_box(tier)
         compressions_and_splits(tier)
         killed_and_recovered(tier)
         foxglove_live.run(tier)
+        exit_boxes(tier)
     finally:
         tier.procs.stop_all()
 

@@ -81,6 +81,35 @@ Expected<std::optional<HubSecurity>> security(const YamlMap& root) {
   return std::optional<HubSecurity>(HubSecurity{folder, *identity});
 }
 
+Expected<HubBlackBox> blackbox(const YamlMap& root) {
+  HubBlackBox out;
+  if (!root.has("blackbox")) return out;
+  auto map = root.map("blackbox");
+  if (!map) return std::move(map).error();
+  if (auto ok = map->only_keys({"enabled", "seconds", "memory_kib", "directory", "directory_mib"}); !ok)
+    return std::move(ok).error();
+  auto enabled = map->boolean_or("enabled", true);
+  if (!enabled) return std::move(enabled).error();
+  out.enabled = *enabled;
+  auto seconds = map->integer_or("seconds", 60, 1, 3600);
+  if (!seconds) return std::move(seconds).error();
+  out.span = std::chrono::seconds(*seconds);
+  // 64 KiB to 1 GiB: below that a single hub-layout State would not fit (the ring keeps entries of
+  // up to a quarter of itself).
+  auto memory = map->integer_or("memory_kib", 8192, 64, 1 << 20);
+  if (!memory) return std::move(memory).error();
+  out.memory_bytes = static_cast<std::size_t>(*memory) * 1024;
+  auto directory = map->string_or("directory", "");
+  if (!directory) return std::move(directory).error();
+  if (!directory->empty() && directory->front() != '/')
+    return map->error_at("directory", "must be an absolute path (e.g. /var/lib/hubrt/blackbox)");
+  out.directory = *directory;
+  auto cap = map->integer_or("directory_mib", 64, 1, 1 << 20);
+  if (!cap) return std::move(cap).error();
+  out.directory_bytes = static_cast<std::uint64_t>(*cap) << 20;
+  return out;
+}
+
 // `clock_tolerance_ms`: a whole number of milliseconds, or `none` (the clocks are not synced).
 // Default 50 ms, as runtime::kDefaultClockTolerance (the reasoning is there). Below the command
 // timeout: a tolerance as long as the timeout would let a command from the future stay fresh for
@@ -125,7 +154,7 @@ bool is_ros_name_token(std::string_view name) noexcept {
 Expected<HubConfig> parse_hub_config(const YamlMap& root) {
   if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "clock_tolerance_ms",
                                 "immediate_state_interval_ms", "layout", "namespace", "diagnostics_hz",
-                                "nodes", "subscriptions", "security"});
+                                "nodes", "subscriptions", "security", "blackbox"});
       !ok) {
     return std::move(ok).error();
   }
@@ -200,6 +229,9 @@ Expected<HubConfig> parse_hub_config(const YamlMap& root) {
   auto secured = security(root);
   if (!secured) return std::move(secured).error();
   config.security = std::move(*secured);
+  auto box = blackbox(root);
+  if (!box) return std::move(box).error();
+  config.blackbox = std::move(*box);
   return config;
 }
 

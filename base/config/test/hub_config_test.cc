@@ -195,5 +195,35 @@ TEST(HubConfig, SecuritySectionNeedsAnIdentityAndNothingElse) {
   }
 }
 
+// The black box (issue 30): on by default with a minute in 8 MiB; each setting bounded; a directory
+// must be absolute (a relative one would depend on where hubd happened to start).
+TEST(HubConfig, BlackBoxDefaultsAndBounds) {
+  auto defaults = parse("hub: dock_ecu\nnodes:\n  dock: {type: dock, slots: []}\n");
+  ASSERT_TRUE(defaults) << defaults.error().message;
+  EXPECT_TRUE(defaults->blackbox.enabled);
+  EXPECT_EQ(defaults->blackbox.span, std::chrono::seconds(60));
+  EXPECT_EQ(defaults->blackbox.memory_bytes, std::size_t{8} << 20);
+  EXPECT_EQ(defaults->blackbox.directory, "");
+  EXPECT_EQ(defaults->blackbox.directory_bytes, std::uint64_t{64} << 20);
+  auto set = parse(
+      "hub: dock_ecu\nnodes:\n  dock: {type: dock, slots: []}\n"
+      "blackbox: {seconds: 30, memory_kib: 1024, directory: /srv/box, directory_mib: 10, enabled: false}\n");
+  ASSERT_TRUE(set) << set.error().message;
+  EXPECT_FALSE(set->blackbox.enabled);
+  EXPECT_EQ(set->blackbox.span, std::chrono::seconds(30));
+  EXPECT_EQ(set->blackbox.memory_bytes, std::size_t{1} << 20);
+  EXPECT_EQ(set->blackbox.directory, "/srv/box");
+  EXPECT_EQ(set->blackbox.directory_bytes, std::uint64_t{10} << 20);
+  for (const char* bad :
+       {"blackbox: {seconds: 0}", "blackbox: {memory_kib: 10}", "blackbox: {directory: box}",
+        "blackbox: {speed: 3}", "blackbox: {directory_mib: 0}"}) {
+    auto refused =
+        parse(std::string("hub: dock_ecu\nnodes:\n  dock: {type: dock, slots: []}\n") + bad + "\n");
+    EXPECT_FALSE(refused) << bad;
+    if (!refused)
+      EXPECT_NE(refused.error().message.find("hub.yaml:4"), std::string::npos) << refused.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace hubrt::config

@@ -12,8 +12,12 @@
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/linux/backend.h"
+#include "hubrt/hub_api/black_box_streams.h"
 #include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hub_api/subscriptions.h"
+#include "hubrt/hub_api/topic_names.h"
+
+#include "diagnostic_msgs_reflect.h"
 
 namespace hubrt::assembly {
 namespace {
@@ -109,6 +113,18 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
                                hub_user_data(started_ns, out->config.ros_namespace, out->config.name));
   if (!participant) return std::move(participant).error();
   out->participant.emplace(std::move(*participant));
+  if (request.black_box_directory && out->config.blackbox.enabled) {
+    const config::HubBlackBox& settings = out->config.blackbox;
+    blackbox::BlackBoxOptions box;
+    box.hub_name = out->config.name;
+    box.span = settings.span;
+    box.memory_bytes = settings.memory_bytes;
+    box.directory = settings.directory.empty() ? *request.black_box_directory : settings.directory;
+    box.directory_bytes = settings.directory_bytes;
+    auto made = blackbox::BlackBox::create(std::move(box));
+    if (!made) return std::move(made).error();
+    out->black_box = std::move(*made);
+  }
   std::unique_ptr<TwinWatch> watch;
   if (request.twin_check) {
     auto started = TwinWatch::start(*out->participant, out->config.ros_namespace, out->config.name, log);
@@ -131,6 +147,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   if (out->config.diagnostics_hz > 0) {
     auto endpoint = DiagnosticsStage::open_endpoint(*out->participant);
     if (!endpoint) return std::move(endpoint).error();
+    endpoint->writer.set_sample_hook(hub_api::black_box_stream(
+        out->black_box.get(), std::string(hub_api::kDiagnosticsTopic),
+        msgs::type_info_of<diagnostic_msgs_msg_dds__DiagnosticArray_>(), dds::Qos::ros2_default(), false));
     diagnostics_endpoint.emplace(std::move(*endpoint));
   }
   std::unique_ptr<Simulation::PreparedBridge> prepared_bridge;
@@ -161,8 +180,9 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   }
 
   out->hub->begin_opening_devices();
-  const hub_api::HubContext context{out->config,   out->board, *out->devices, *out->participant,
-                                    request.waker, log,        clock,         *out->subscriptions};
+  const hub_api::HubContext context{out->config,         out->board, *out->devices, *out->participant,
+                                    request.waker,       log,        clock,         *out->subscriptions,
+                                    out->black_box.get()};
   if (auto built = type->build(context, *out->hub); !built) return std::move(built).error();
   // Other hubs' States are taken before the nodes step, so the logic sees this cycle's.
   if (auto stage = out->subscriptions->make_stage()) out->hub->add_first_stage(std::move(stage));
@@ -184,6 +204,14 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   if (out->simulated) {
     out->hub->add_stage(
         request.simulation->bridge(std::move(prepared_bridge), out->board, *out->simulated, log));
+  }
+  if (out->black_box) {
+    out->black_box->seal();
+    auto service = BlackBoxService::start(*out->participant, *out->black_box, out->config.ros_namespace,
+                                          out->config.name, log);
+    if (!service) return std::move(service).error();
+    out->black_box_service = std::move(*service);
+    out->hub->add_stage(out->black_box_service->make_stage(*out->hub));
   }
   return out;
 }

@@ -41,6 +41,7 @@ Expected<UntypedReader> UntypedReader::create(const Participant& participant, co
 }
 
 Result<bool> UntypedReader::take_next(void* sample, SampleInfo* info) noexcept {
+  if (hook_ != nullptr) return take_next_shown(sample, info);
   for (;;) {
     // A non-null buf[0] makes Cyclone deserialise into the caller's sample, reusing its buffers,
     // instead of loaning one of its own.
@@ -50,6 +51,38 @@ Result<bool> UntypedReader::take_next(void* sample, SampleInfo* info) noexcept {
     if (n < 0) return to_status(n);
     if (n == 0) return false;
     if (!sample_info.valid_data) continue;
+    if (info != nullptr) {
+      info->source_time = WallTime{sample_info.source_timestamp};
+      info->publication_handle = sample_info.publication_handle;
+    }
+    return true;
+  }
+}
+
+// take_next with the hook: dds_takecdr hands over the received serdata (a reference, no copy), the
+// hook sees its bytes (ddsi_serdata_to_ser_ref: in place), ddsi_serdata_to_sample deserialises it
+// into the caller's sample reusing its buffers — what dds_take does with a non-null buf[0] (Cyclone
+// 0.10.2 dds_rhc_default.c, take_w_qminv -> ddsi_serdata_to_sample) — and the reference goes back.
+Result<bool> UntypedReader::take_next_shown(void* sample, SampleInfo* info) noexcept {
+  for (;;) {
+    struct ddsi_serdata* serdata = nullptr;
+    dds_sample_info_t sample_info;
+    const dds_return_t n = dds_takecdr(handle_.get(), &serdata, 1, &sample_info, DDS_ANY_STATE);
+    if (n < 0) return to_status(n);
+    if (n == 0) return false;
+    if (!sample_info.valid_data || serdata == nullptr) {
+      if (serdata != nullptr) ddsi_serdata_unref(serdata);
+      continue;
+    }
+    const std::uint32_t size = ddsi_serdata_size(serdata);
+    ddsrt_iovec_t ref;
+    struct ddsi_serdata* held = ddsi_serdata_to_ser_ref(serdata, 0, size, &ref);
+    hook_->on_sample({static_cast<const std::uint8_t*>(ref.iov_base), static_cast<std::size_t>(ref.iov_len)},
+                     WallTime{sample_info.source_timestamp});
+    ddsi_serdata_to_ser_unref(held, &ref);
+    const bool read = ddsi_serdata_to_sample(serdata, sample, nullptr, nullptr);
+    ddsi_serdata_unref(serdata);
+    if (!read) return Status(ErrorCode::kInvalidArgument);
     if (info != nullptr) {
       info->source_time = WallTime{sample_info.source_timestamp};
       info->publication_handle = sample_info.publication_handle;

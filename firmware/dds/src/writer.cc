@@ -71,6 +71,17 @@ Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, co
   return writer;
 }
 
+// The block's bytes in place (the pool's to_ser_ref), before Cyclone holds the serdata.
+void UntypedWriter::show_hook(ddsi_serdata* serdata, WallTime source_time) noexcept {
+  if (hook_ == nullptr) return;
+  const std::uint32_t size = ddsi_serdata_size(serdata);
+  ddsrt_iovec_t ref;
+  ddsi_serdata* held = ddsi_serdata_to_ser_ref(serdata, 0, size, &ref);
+  hook_->on_sample({static_cast<const std::uint8_t*>(ref.iov_base), static_cast<std::size_t>(ref.iov_len)},
+                   source_time);
+  ddsi_serdata_to_ser_unref(held, &ref);
+}
+
 void UntypedWriter::PoolRelease::operator()(detail::SerdataPool* pool) const noexcept {
   pool->release();
 }
@@ -79,6 +90,7 @@ Status UntypedWriter::write(const void* sample) noexcept {
   if (pool_ == nullptr || sample == nullptr) return to_status(dds_write(handle_.get(), sample));
   ddsi_serdata* serdata = pool_->serialize(sample);
   if (serdata == nullptr) return to_status(DDS_RETCODE_BAD_PARAMETER);  // as dds_write's from_sample
+  show_hook(serdata, WallTime{});
   const dds_return_t rc = dds_writecdr(handle_.get(), serdata);
   // dds_writecdr consumes the serdata's reference once it has locked the writer; when it cannot
   // (a deleted or wrong handle: dds_write.c, dds_writer_lock) it returns with the reference ours.
@@ -97,6 +109,7 @@ Status UntypedWriter::write(const void* sample, WallTime source_time) noexcept {
   // What dds_writecdr sets before dds_writecdr_impl, with our time in place of dds_time().
   serdata->statusinfo = 0;
   serdata->timestamp.v = source_time.ns_since_epoch;
+  show_hook(serdata, source_time);
   const dds_return_t rc = dds_forwardcdr(handle_.get(), serdata);
   if (rc == DDS_RETCODE_BAD_PARAMETER || rc == DDS_RETCODE_ALREADY_DELETED ||
       rc == DDS_RETCODE_ILLEGAL_OPERATION) {

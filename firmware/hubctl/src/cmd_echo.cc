@@ -47,10 +47,14 @@ int run_echo(const EchoOptions& options) {
     return kExitUsage;
   }
   const bool live = options.from.empty();
-  auto participant = live ? join_domain(options.domain, "hubctl") : isolated_participant("hubctl");
-  if (!participant) {
-    fmt::print(stderr, "hubctl echo: {}\n", participant.error().message);
-    return kExitUsage;
+  std::optional<dds::Participant> participant;
+  if (live) {
+    auto joined = join_domain(options.domain, "hubctl");
+    if (!joined) {
+      fmt::print(stderr, "hubctl echo: {}\n", joined.error().message);
+      return kExitUsage;
+    }
+    participant.emplace(std::move(*joined));
   }
   std::unique_ptr<StationTap> tap;
   std::unique_ptr<TapSource> source;

@@ -90,10 +90,14 @@ void draw(const std::map<std::string, WatchedState>& watched, bool plain,
 int run_watch(const WatchOptions& options) {
   install_stop_handler();
   const bool live = options.from.empty();
-  auto participant = live ? join_domain(options.domain, "hubctl") : isolated_participant("hubctl");
-  if (!participant) {
-    fmt::print(stderr, "hubctl watch: {}\n", participant.error().message);
-    return kExitUsage;
+  std::optional<dds::Participant> participant;
+  if (live) {
+    auto joined = join_domain(options.domain, "hubctl");
+    if (!joined) {
+      fmt::print(stderr, "hubctl watch: {}\n", joined.error().message);
+      return kExitUsage;
+    }
+    participant.emplace(std::move(*joined));
   }
   // The source of States: the tap on the domain, or the recording.
   std::unique_ptr<StationTap> tap;

@@ -5,8 +5,6 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
-#include "command_qos.h"
-
 namespace hubrt::hubctl {
 
 void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms) {
@@ -49,7 +47,7 @@ Expected<CommandChannel> CommandChannel::open(const dds::Participant& participan
   }
   auto topic = dds::UntypedTopic::create(participant, *type.descriptor, ros_topic);
   if (!topic) return std::move(topic).error();
-  auto writer = dds::UntypedWriter::create(participant, *topic, command_writer_qos());
+  auto writer = dds::UntypedWriter::create(participant, *topic);
   if (!writer) return std::move(writer).error();
   return CommandChannel(std::move(*topic), std::move(*writer));
 }

@@ -17,6 +17,7 @@ void add_net_config_command(CLI::App& app, int& exit_code);
 void add_security_command(CLI::App& app, int& exit_code);
 void add_serve_command(CLI::App& app, int& exit_code);
 void add_record_command(CLI::App& app, int& exit_code);
+void add_blackbox_command(CLI::App& app, int& exit_code);
 void add_foxglove_command(CLI::App& app, int& exit_code);
 
 }  // namespace hubrt::hubctl

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "ros2_qos_yaml.h"
+#include "hubrt/mcap/ros2_qos_yaml.h"
 
 namespace hubrt::hubctl {
 namespace {
@@ -37,8 +37,11 @@ Expected<std::uint16_t> Recorder::channel_of(const TapTopic& topic) {
   }
   // The QoS as the writers offer it when the topic's first sample is taken: the channel's, as
   // rosbag2 records the offers of the publishers it found when it subscribed.
-  mcap::Channel channel{
-      0, schema->second, topic.ros_name, "cdr", {{"offered_qos_profiles", offered_qos_yaml(topic.offered)}}};
+  mcap::Channel channel{0,
+                        schema->second,
+                        topic.ros_name,
+                        "cdr",
+                        {{"offered_qos_profiles", mcap::offered_qos_yaml(topic.offered)}}};
   auto id = writer_.add_channel(channel);
   if (!id) return std::move(id).error();
   channels_.emplace(topic.ros_name, *id);

@@ -4,9 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/mcap/ros2_qos_yaml.h"
 #include "hubrt/msgs/all_types.h"
-
-#include "ros2_qos_yaml.h"
 
 namespace hubrt::hubctl {
 namespace {
@@ -53,7 +52,7 @@ std::shared_ptr<const TapTopic> RecordingSource::topic_of(std::uint16_t channel_
     made->type_name = type_name;
     made->schema = schema->second.data;
     if (const auto qos = channel.metadata.find("offered_qos_profiles"); qos != channel.metadata.end())
-      made->offered = parse_offered_qos_yaml(qos->second);
+      made->offered = mcap::parse_offered_qos_yaml(qos->second);
     topic = made;
     pending_.push_back({TapEvent::Kind::kTopic, topic, nullptr});
   }

@@ -41,6 +41,11 @@ Expected<void> add_hub(TopicPermissions& out, const std::string& hub, bool simul
     add_unique(out.subscribe, dds(subscription.topic));
   }
   add_unique(out.publish, dds(std::string(hub_api::kDiagnosticsTopic)));
+  if (config->blackbox.enabled) {
+    // Its black box's request and answer (firmware/assembly black_box_service.h).
+    add_unique(out.subscribe, fmt::format("rt{}/{}/blackbox/request", ns, config->name));
+    add_unique(out.publish, fmt::format("rt{}/{}/blackbox/written", ns, config->name));
+  }
   if (simulation) {
     add_unique(out.publish, fmt::format("rt/sim/{}/signals", config->name));
     // Every topic a hub's sim bridge reads (firmware/sim: sim_bridge_stage.h, kSim*Topic): a
@@ -60,11 +65,14 @@ Expected<TopicPermissions> role_permissions(const std::string& role, const std::
   if (role != "hub" && !hubs.empty()) {
     return make_error(ErrorCode::kInvalidArgument, "--hub is for --role hub only");
   }
+  // Asking a hub for its black box (hubctl blackbox) actuates nothing and the hub bounds it (one
+  // file per 10 s): planners and observers may.
   if (role == "planner") {
-    out.publish = {"rt/*/command"};
+    out.publish = {"rt/*/command", "rt/*/blackbox/request"};
     out.subscribe = {"rt/*"};
     if (simulation) out.publish.emplace_back("rt/sim/*");
   } else if (role == "observer") {
+    out.publish = {"rt/*/blackbox/request"};
     out.subscribe = {"rt/*"};
   } else if (role == "simulator") {
     out.publish = {"rt/sim/*"};

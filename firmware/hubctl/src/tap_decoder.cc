@@ -22,27 +22,28 @@ const void* TapDecoder::deserialize(const TapSample& sample) {
   if (topic.type == nullptr || topic.type->descriptor == nullptr) return nullptr;
   auto per_type = types_.find(topic.type);
   if (per_type == types_.end()) {
-    if (!codec_participant_) {
-      if (codec_participant_failed_) return nullptr;
+    std::unique_ptr<PerType> made;
+    if (!participant_) {
       auto participant = isolated_participant(tool_);
-      if (!participant) {
-        codec_participant_failed_ = true;  // said once: every sample would fail the same way
-        fmt::print(stderr, "{}: no participant to decode samples with: {}\n", tool_,
-                   participant.error().message);
-        return nullptr;
+      if (participant) {
+        participant_.emplace(std::move(*participant));
+      } else {
+        fmt::print(stderr, "{}: {}\n", tool_, participant.error().message);
       }
-      codec_participant_.emplace(std::move(*participant));
     }
-    auto codec = dds::CdrCodec::create(*codec_participant_, *topic.type->descriptor);
-    if (!codec) {
-      fmt::print(stderr, "{}: {}: {}\n", tool_, topic.ros_name, codec.error().message);
-      return nullptr;
+    if (participant_) {
+      auto codec = dds::CdrCodec::create(*participant_, *topic.type->descriptor);
+      if (codec) {
+        made = std::make_unique<PerType>(
+            PerType{std::move(*codec), dds::UntypedSample(*topic.type->descriptor)});
+      } else {
+        fmt::print(stderr, "{}: {}: {}\n", tool_, topic.ros_name, codec.error().message);
+      }
     }
-    per_type =
-        types_.emplace(topic.type, PerType{std::move(*codec), dds::UntypedSample(*topic.type->descriptor)})
-            .first;
+    per_type = types_.emplace(topic.type, std::move(made)).first;  // a failure is said once
   }
-  PerType& t = per_type->second;
+  if (!per_type->second) return nullptr;
+  PerType& t = *per_type->second;
   if (!t.codec.decode(sample.cdr, t.scratch.data())) {
     // Cyclone refuses it (a recording damaged or written by something else: a live sample passed
     // the same check on its way in). Said once per topic, then every 100th time.

@@ -27,9 +27,10 @@ Expected<dds::Participant> isolated_participant(std::string_view name);
 // One per consumer. Not thread-safe.
 class TapDecoder {
  public:
-  // `tool` prefixes reports ("hubctl echo"). The codecs are made on an isolated participant of the
-  // decoder's own, never on the tap's: a codec is a topic ("hubrt_codec/<type>") and a probe
-  // writer, which a secured domain's permissions rightly refuse to an observer.
+  // `tool` prefixes reports ("hubctl echo"). The codecs are made on a participant of the decoder's
+  // own that talks to nobody (isolated_participant(), made with the first codec): a codec's topic
+  // on the live participant would be refused by DDS Security permissions, which name the
+  // station's topics only.
   explicit TapDecoder(std::string tool) : tool_(std::move(tool)) {}
 
   // The sample as JSON; nullopt when it cannot be shown (said on stderr, once per topic and kind).
@@ -46,11 +47,10 @@ class TapDecoder {
   SampleDecoder& decoder_of(const std::string& topic);
 
   std::string tool_;
-  std::optional<dds::Participant> codec_participant_;  // made on first use; outlives the codecs
-  bool codec_participant_failed_ = false;
-  std::map<const msgs::TypeInfo*, PerType> types_;
-  std::map<std::string, SampleDecoder> decoders_;  // by topic
-  std::map<std::string, std::uint64_t> refused_;   // samples Cyclone refused, by topic
+  std::optional<dds::Participant> participant_;                      // before the codecs: they go first
+  std::map<const msgs::TypeInfo*, std::unique_ptr<PerType>> types_;  // null: no codec for the type
+  std::map<std::string, SampleDecoder> decoders_;                    // by topic
+  std::map<std::string, std::uint64_t> refused_;                     // samples Cyclone refused, by topic
 };
 
 }  // namespace hubrt::hubctl

@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/mcap/linear_reader.h"
+#include "hubrt/mcap/ros2_qos_yaml.h"
 #include "hubrt/mcap/summary.h"
 #include "hubrt/msgs/all_types.h"
 
 #include "recorder.h"
 #include "recording_source.h"
-#include "ros2_qos_yaml.h"
 #include "tap.h"
 
 namespace hubrt::hubctl {
@@ -56,30 +56,30 @@ TEST(TapQueue, DropsSamplesBeyondItsCapacityButNeverATopicAndNeverWaits) {
 TEST(Ros2QosYaml, WritesRosbag2sProfilesAndReadsThemBack) {
   const dds::OfferedQos ros2_default = dds::read_offered_qos(dds::Qos::ros2_default().get());
   // What rosbag2 (metadata version 9+) writes for a default ROS 2 publisher on Cyclone.
-  EXPECT_EQ(offered_qos_yaml({ros2_default}),
+  EXPECT_EQ(mcap::offered_qos_yaml({ros2_default}),
             "- history: keep_last\n  depth: 10\n  reliability: reliable\n  durability: volatile\n"
             "  deadline:\n    sec: 9223372036\n    nsec: 854775807\n"
             "  lifespan:\n    sec: 9223372036\n    nsec: 854775807\n  liveliness: automatic\n"
             "  liveliness_lease_duration:\n    sec: 9223372036\n    nsec: 854775807\n"
             "  avoid_ros_namespace_conventions: false\n");
-  EXPECT_EQ(offered_qos_yaml({}), "[]\n");
+  EXPECT_EQ(mcap::offered_qos_yaml({}), "[]\n");
   dds::OfferedQos other;
   other.reliability = dds::OfferedQos::Reliability::kBestEffort;
   other.durability = dds::OfferedQos::Durability::kTransientLocal;
   other.depth = 3;
   other.deadline = std::chrono::milliseconds(1500);
-  const auto back = parse_offered_qos_yaml(offered_qos_yaml({ros2_default, other}));
+  const auto back = mcap::parse_offered_qos_yaml(mcap::offered_qos_yaml({ros2_default, other}));
   ASSERT_EQ(back.size(), 2U);
   EXPECT_EQ(back[0].depth, 10);
   EXPECT_EQ(back[1], other);
   // rosbag2 before metadata version 9 wrote the rmw enum values (rosbag2_storage test_qos.cpp).
-  const auto old = parse_offered_qos_yaml(
+  const auto old = mcap::parse_offered_qos_yaml(
       "- history: 1\n  depth: 10\n  reliability: 2\n  durability: 1\n  deadline:\n    sec: 0\n    nsec: 0\n");
   ASSERT_EQ(old.size(), 1U);
   EXPECT_EQ(old[0].reliability, dds::OfferedQos::Reliability::kBestEffort);
   EXPECT_EQ(old[0].durability, dds::OfferedQos::Durability::kTransientLocal);
-  EXPECT_TRUE(parse_offered_qos_yaml("{not: [yaml").empty());
-  EXPECT_TRUE(parse_offered_qos_yaml("- &a [*a, *a]\n").empty());
+  EXPECT_TRUE(mcap::parse_offered_qos_yaml("{not: [yaml").empty());
+  EXPECT_TRUE(mcap::parse_offered_qos_yaml("- &a [*a, *a]\n").empty());
 }
 
 class RecorderTest : public ::testing::Test {

@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
 #include <exception>
 
+#include "hubrt/blackbox/black_box.h"
 #include "hubrt/hal/linux/crash_safe_outputs.h"
 
 namespace hubrt::hubd {
@@ -17,6 +19,8 @@ constexpr std::array<int, 5> kFatalSignals{SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGA
 // Written once by install_crash_handlers() before any handler can run; read by the handlers.
 std::array<struct sigaction, kFatalSignals.size()> g_previous{};
 std::terminate_handler g_previous_terminate = nullptr;
+std::atomic<blackbox::BlackBox*> g_black_box{nullptr};
+static_assert(std::atomic<blackbox::BlackBox*>::is_always_lock_free, "read from a signal handler");
 
 void say(const char* text) noexcept {
   std::size_t length = 0;
@@ -30,6 +34,11 @@ void drive_safe_and_say(const char* why) noexcept {
   say(why);
   say(result.failed == 0 ? ": GPIO outputs driven to their safe levels\n"
                          : ": some GPIO outputs could NOT be driven to their safe levels\n");
+  // The outputs first: writing the black box is the second thing a crash may still do.
+  if (blackbox::BlackBox* box = g_black_box.load()) {
+    box->crash_dump();
+    say("hubd: black box written (its directory, *_crash.mcap)\n");
+  }
 }
 
 void on_fatal_signal(int signal, siginfo_t* info, void* /*context*/) {
@@ -50,6 +59,10 @@ void on_fatal_signal(int signal, siginfo_t* info, void* /*context*/) {
 }
 
 }  // namespace
+
+void set_crash_black_box(blackbox::BlackBox* box) noexcept {
+  g_black_box.store(box);
+}
 
 void install_crash_handlers() {
   for (std::size_t i = 0; i < kFatalSignals.size(); ++i) {

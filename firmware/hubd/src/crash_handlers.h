@@ -8,6 +8,10 @@
 // `hubd --safe-outputs` does it), nothing on Modbus or CAN, nothing on the fake backend.
 #pragma once
 
+namespace hubrt::blackbox {
+class BlackBox;
+}
+
 namespace hubrt::hubd {
 
 // Installs the handlers, keeping the dispositions found (e.g. a sanitizer's): after driving the
@@ -15,5 +19,9 @@ namespace hubrt::hubd {
 // (a fault re-faults on return; a sent signal is raised again), and the terminate handler calls
 // the terminate handler found. Call once, early, from the main thread. Not thread-safe.
 void install_crash_handlers();
+
+// After the outputs, a crash also writes `box` (BlackBox::crash_dump: async-signal-safe work only).
+// Set once the black box is sealed, before the cycle runs; nullptr again before it is destroyed.
+void set_crash_black_box(blackbox::BlackBox* box) noexcept;
 
 }  // namespace hubrt::hubd

@@ -8,8 +8,10 @@
 // Exit statuses: hubrt/base/exit_codes.h. Every stop signal (runtime::stop_signals()) ends the
 // cycle, drives the outputs safe, then exits: 0 for SIGTERM/SIGINT, 128+N for signal N otherwise.
 #include <malloc.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 
 #include <CLI/CLI.hpp>
@@ -49,6 +51,7 @@ struct Options {
   bool check_only = false;
   bool safe_outputs = false;
   bool realtime = false;
+  bool no_black_box = false;
   int realtime_priority = kDefaultRealtimePriority;
   std::string security_dir;  // DDS Security, overriding the hub file's security: section
   std::string identity;
@@ -66,6 +69,29 @@ constexpr Duration kStartupWatchdog = std::chrono::seconds(30);
 std::string signal_name(int signal) {
   const char* abbreviation = sigabbrev_np(signal);  // glibc >= 2.32
   return abbreviation != nullptr ? fmt::format("SIG{}", abbreviation) : fmt::format("signal {}", signal);
+}
+
+// Where black boxes go when the hub file names no directory: $HUBRT_BLACKBOX_DIR; else the board
+// packages' /var/lib/hubrt/blackbox when it is there to write; else a folder in $TMPDIR (a
+// development machine).
+std::string default_black_box_directory() {
+  if (const char* dir = std::getenv("HUBRT_BLACKBOX_DIR"); dir != nullptr && *dir != '\0') return dir;
+  if (::access("/var/lib/hubrt/blackbox", W_OK) == 0) return "/var/lib/hubrt/blackbox";
+  const char* tmp = std::getenv("TMPDIR");
+  return fmt::format("{}/hubrt-blackbox", tmp != nullptr && *tmp != '\0' ? tmp : "/tmp");
+}
+
+// The black box on the way out, after the outputs are safe: the last minute before the exit.
+void write_black_box(assembly::AssembledHub& hub, const std::string& reason) {
+  if (!hub.black_box) return;
+  hub.black_box_service.reset();  // its thread writes no more
+  auto written = hub.black_box->dump(reason);
+  if (written) {
+    spdlog::info("black box written: {} ({} messages, {:.1f} s)", written->path, written->messages,
+                 written->seconds);
+  } else {
+    spdlog::error("black box not written: {}", written.error().message);
+  }
 }
 
 int fail(const std::string& message, int code) {
@@ -194,6 +220,7 @@ int run(const Options& options) {
   // After --check returned: a check joins no network, so it has no twin to collide with.
   request.twin_check = std::chrono::milliseconds(options.twin_check_ms);
   request.request_stop = [&runner] { runner->request_stop(); };
+  if (!options.no_black_box) request.black_box_directory = default_black_box_directory();
   SystemClock clock;
   auto assembled = assembly::assemble_hub(request, clock);
   if (!assembled) {
@@ -230,6 +257,7 @@ int run(const Options& options) {
   runtime::RunHooks hooks;
   hooks.after_cycle = [&systemd](const Instant& now) { systemd.cycle_done(now.mono); };
   runtime::Hub& hub = *(*assembled)->hub;
+  set_crash_black_box((*assembled)->black_box.get());
   auto stopped = runner->run(hub, clock, hooks);
 
   systemd.stopping();
@@ -237,10 +265,14 @@ int run(const Options& options) {
   hub.report_safe_state(clock.now());
   if (!stopped) {
     spdlog::error("cycle failed: {}; outputs driven to their safe state", stopped.error().message);
+    write_black_box(**assembled, "exit-error");
+    set_crash_black_box(nullptr);
     return kExitRuntime;
   }
   if ((*assembled)->twins != nullptr && (*assembled)->twins->yielded()) {
     spdlog::error("{}; outputs driven to their safe state", (*assembled)->twins->yield_message());
+    write_black_box(**assembled, "exit-twin");
+    set_crash_black_box(nullptr);
     return kExitRuntime;
   }
   const runtime::CycleStats& stats = hub.stats();
@@ -252,6 +284,8 @@ int run(const Options& options) {
       "lines dropped); exit status {}",
       by_signal ? signal_name(signal) : "request", stats.cycles, stats.overruns, log_lines_dropped().load(),
       status);
+  write_black_box(**assembled, by_signal ? "exit-" + signal_name(signal) : "exit");
+  set_crash_black_box(nullptr);
   return status;
 }
 
@@ -302,6 +336,9 @@ int main(int argc, char** argv) {
                  "check ends earlier once discovery has been quiet for 15 ms and no hub of an older hubrt "
                  "is on the domain (0: no start-up check; a twin is still caught while running)")
       ->check(CLI::Range(0, 60000));
+  app.add_flag("--no-black-box", options.no_black_box,
+               "Run without the black box, whatever the hub file's blackbox: section says (what the "
+               "benchmark compares the black box's cost with)");
   app.add_flag("--realtime", options.realtime,
                "Run the cycle (and every thread of hubd) under SCHED_FIFO and lock its memory "
                "(mlockall); refused with exit status 2 where not permitted (needs CAP_SYS_NICE or "

@@ -41,6 +41,18 @@ struct HubSecurity {
   std::string identity;
 };
 
+// The hub's black box (docs/hub-config.md, "blackbox"): the last `span` of its commands, States
+// and /diagnostics in `memory_bytes` allocated at start, written as MCAP into `directory` (empty:
+// hubd's default, $HUBRT_BLACKBOX_DIR or /var/lib/hubrt/blackbox) whose files of this hub are kept
+// under `directory_bytes`.
+struct HubBlackBox {
+  bool enabled = true;
+  Duration span = std::chrono::seconds(60);
+  std::size_t memory_bytes = std::size_t{8} << 20;
+  std::string directory;
+  std::uint64_t directory_bytes = std::uint64_t{64} << 20;
+};
+
 struct HubConfig {
   std::string file;
   std::string type;
@@ -60,6 +72,7 @@ struct HubConfig {
   std::vector<NodeConfig> nodes;
   std::vector<Subscription> subscriptions;
   std::optional<HubSecurity> security;  // absent: the hub joins the domain unsecured
+  HubBlackBox blackbox;
 };
 
 // Loads and validates a hub configuration. Errors name file:line:col, the key and the problem.

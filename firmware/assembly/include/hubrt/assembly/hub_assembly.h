@@ -10,10 +10,12 @@
 
 #include <spdlog/logger.h>
 
+#include "hubrt/assembly/black_box_service.h"
 #include "hubrt/assembly/simulation.h"
 #include "hubrt/assembly/twin_watch.h"
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
+#include "hubrt/blackbox/black_box.h"
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/participant.h"
@@ -58,6 +60,10 @@ struct AssemblyRequest {
   // Called from the cycle when this hub must stop because an earlier twin runs (thread-safe,
   // allocation-free, e.g. CycleRunner::request_stop).
   std::function<void()> request_stop;
+  // The black box's directory when the hub file does not name one (hubd: $HUBRT_BLACKBOX_DIR or
+  // /var/lib/hubrt/blackbox): with a value, a hub whose file leaves the black box enabled gets one
+  // (AssembledHub::black_box); nullopt: no black box (most tests, benchmarks without it).
+  std::optional<std::string> black_box_directory;
 };
 
 // What `hubd --check` validates: both files, loaded, with the overrides applied.
@@ -80,11 +86,16 @@ struct AssembledHub {
   std::unique_ptr<Simulation::SimulatedBackend> simulated;  // owns the backend on a simulated board
   std::unique_ptr<hal::Backend> backend;                    // else the backend
   hal::Backend* devices = nullptr;                          // the backend in use, either way
+  // Before the participant and the hub: the readers and writers that show it their samples go
+  // first (black_box.h).
+  std::unique_ptr<blackbox::BlackBox> black_box;
   std::optional<dds::Participant> participant;
   std::unique_ptr<TwinWatch> twin_watch;                  // when request.twin_check: uses the participant
   std::unique_ptr<hub_api::Subscriptions> subscriptions;  // its readers use the participant; the nodes use it
   std::unique_ptr<runtime::Hub> hub;
   const TwinStage* twins = nullptr;  // owned by the hub; says whether the hub yielded to a twin
+  // Writes the black box on a fault and on request; last, so that its thread stops first.
+  std::unique_ptr<BlackBoxService> black_box_service;
 };
 
 // check_hub(), then joins the domain, checks for a twin (request.twin_check), opens the backend and

@@ -17,6 +17,7 @@
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/qos.h"
 #include "hubrt/dds/sample.h"
+#include "hubrt/dds/sample_hook.h"
 #include "hubrt/dds/topic.h"
 
 namespace hubrt::dds {
@@ -63,6 +64,13 @@ class UntypedReader {
   // Errors: Cyclone's code.
   Result<bool> take_serialized(std::vector<std::uint8_t>& out, SampleInfo* info = nullptr);
 
+  // From now on, take_next() shows `hook` every valid sample it takes, as the bytes that were
+  // received (it takes the serialized sample, hands its bytes to the hook, then deserialises it into
+  // the caller's sample as dds_take would: the same work, no allocation of ours). nullptr: none.
+  // The hook must outlive the reader or be replaced first. Not thread-safe: before the reader is
+  // in use.
+  void set_sample_hook(SampleHook* hook) noexcept { hook_ = hook; }
+
   // Number of writers currently matched. Errors: Cyclone's code.
   [[nodiscard]] Result<std::uint32_t> matched_writers() const noexcept;
 
@@ -75,6 +83,7 @@ class UntypedReader {
   [[nodiscard]] const dds_topic_descriptor_t& descriptor() const noexcept { return *descriptor_; }
 
  private:
+  Result<bool> take_next_shown(void* sample, SampleInfo* info) noexcept;
   UntypedReader(std::unique_ptr<DataAvailableCallback> callback, EntityHandle handle, std::string topic_name,
                 const dds_topic_descriptor_t& descriptor) noexcept
       : callback_(std::move(callback)),
@@ -88,6 +97,7 @@ class UntypedReader {
   EntityHandle handle_;
   std::string topic_name_;
   const dds_topic_descriptor_t* descriptor_;
+  SampleHook* hook_ = nullptr;
 };
 
 // A reader of generated type T. Move-only; thread-safety as UntypedReader.
@@ -137,6 +147,8 @@ class Reader {
   }
   [[nodiscard]] const UntypedReader& untyped() const noexcept { return reader_; }
   [[nodiscard]] dds_entity_t handle() const noexcept { return reader_.handle(); }
+  // As UntypedReader::set_sample_hook.
+  void set_sample_hook(SampleHook* hook) noexcept { reader_.set_sample_hook(hook); }
 
  private:
   explicit Reader(UntypedReader reader) noexcept : reader_(std::move(reader)) {}

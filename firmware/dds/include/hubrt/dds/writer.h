@@ -16,6 +16,7 @@
 #include "hubrt/dds/entity.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/qos.h"
+#include "hubrt/dds/sample_hook.h"
 #include "hubrt/dds/topic.h"
 
 namespace hubrt::dds {
@@ -74,6 +75,12 @@ class UntypedWriter {
   // one whose sertype was not found (no write pool); Cyclone's code of the write.
   Status write_serialized(std::span<const std::uint8_t> serialized) noexcept;
 
+  // From now on, write() shows `hook` each sample it serialised into its pool, before Cyclone sends
+  // it (the bytes in place: no copy, no second serialisation). A writer without a pool (a keyed
+  // topic) shows nothing. nullptr: none. The hook must outlive the writer or be replaced first.
+  // Not thread-safe: before the writer is in use.
+  void set_sample_hook(SampleHook* hook) noexcept { hook_ = hook; }
+
   // Number of readers currently matched. Errors: Cyclone's code (deleted writer).
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept;
 
@@ -108,6 +115,8 @@ class UntypedWriter {
  private:
   static void on_publication_matched(dds_entity_t writer, dds_publication_matched_status_t status,
                                      void* arg) noexcept;
+  // Shows the hook (if any) a serialised sample of the pool.
+  void show_hook(struct ddsi_serdata* serdata, WallTime source_time) noexcept;
 
   // What the publication-matched listener updates; heap-held so that it stays in place when the
   // writer moves (Cyclone keeps a pointer to it until the writer is deleted).
@@ -132,6 +141,7 @@ class UntypedWriter {
   // instance registration then); serdata Cyclone still holds keep the pool itself alive.
   std::unique_ptr<detail::SerdataPool, PoolRelease> pool_;
   std::string topic_name_;
+  SampleHook* hook_ = nullptr;
 };
 
 // A writer of generated type T. Move-only; thread-safety as UntypedWriter.
@@ -161,6 +171,8 @@ class Writer {
   [[nodiscard]] std::size_t pooled_blocks() const noexcept { return writer_.pooled_blocks(); }
   [[nodiscard]] const UntypedWriter& untyped() const noexcept { return writer_; }
   [[nodiscard]] dds_entity_t handle() const noexcept { return writer_.handle(); }
+  // As UntypedWriter::set_sample_hook.
+  void set_sample_hook(SampleHook* hook) noexcept { writer_.set_sample_hook(hook); }
 
  private:
   explicit Writer(UntypedWriter writer) noexcept : writer_(std::move(writer)) {}

@@ -21,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/hub_api/black_box_streams.h"
 #include "hubrt/hub_api/dds_ports.h"
 #include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hub_api/node_wiring.h"
@@ -250,6 +251,12 @@ class NodeWiring {
     auto writer = dds::Writer<HubState>::create(context.participant, *state_topic, dds::Qos::ros2_default(),
                                                 [waker] { waker.wake(); });
     if (!writer) return std::move(writer).error();
+    reader->set_sample_hook(black_box_stream(context.black_box, hub_command_topic(ns, context.config.name),
+                                             msgs::type_info_of<HubCommand>(),
+                                             dds::Qos::ros2_default(kCommandHistoryDepth), true));
+    writer->set_sample_hook(black_box_stream(context.black_box, hub_state_topic(ns, context.config.name),
+                                             msgs::type_info_of<HubState>(), dds::Qos::ros2_default(),
+                                             false));
     wiring.stage_ = std::make_unique<detail::HubLayoutStage<HubTypes>>(
         std::move(*command_topic), std::move(*state_topic), DdsCommandSource<HubCommand>(std::move(*reader)),
         DdsStateSink<HubState>(std::move(*writer)));

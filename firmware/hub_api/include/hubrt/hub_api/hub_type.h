@@ -25,6 +25,13 @@
 namespace hubrt::hub_api {
 
 class Subscriptions;
+}  // namespace hubrt::hub_api
+
+namespace hubrt::blackbox {
+class BlackBox;
+}  // namespace hubrt::blackbox
+
+namespace hubrt::hub_api {
 
 // Everything a hub type may use while building. References outlive the built hub.
 struct HubContext {
@@ -37,6 +44,9 @@ struct HubContext {
   const Clock& clock;  // for opening devices at start; the cycle passes time in afterwards
   // Other hubs' States, by the names of the hub file's `subscriptions:` (outlive the built hub).
   Subscriptions& subscriptions;
+  // The hub's black box, or null: the command readers and State writers show it their samples
+  // (black_box_streams.h). Outlives the built hub.
+  blackbox::BlackBox* black_box = nullptr;
 };
 
 // What HubType::stop_devices() did for one device.

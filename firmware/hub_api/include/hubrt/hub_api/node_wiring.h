@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/dds/topic.h"
+#include "hubrt/hub_api/black_box_streams.h"
 #include "hubrt/hub_api/dds_ports.h"
 #include "hubrt/hub_api/hub_type.h"
 #include "hubrt/hub_api/topic_names.h"
@@ -67,6 +68,12 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   auto writer = dds::Writer<State>::create(context.participant, *state_topic, dds::Qos::ros2_default(),
                                            [waker] { waker.wake(); });
   if (!writer) return fail(writer.error());
+  reader->set_sample_hook(
+      black_box_stream(context.black_box, node_command_topic(context.config.ros_namespace, Logic::kType),
+                       msgs::type_info_of<Command>(), dds::Qos::ros2_default(kCommandHistoryDepth), true));
+  writer->set_sample_hook(black_box_stream(
+      context.black_box, node_state_topic(context.config.ros_namespace, context.config.name, node.name),
+      msgs::type_info_of<State>(), dds::Qos::ros2_default(), false));
 
   auto ports = std::make_shared<NodeTypePorts<Logic>>(NodeTypePorts<Logic>{
       std::move(*command_topic), std::move(*state_topic),

@@ -9,7 +9,7 @@
 
 #include "hubrt/dds/qos.h"
 
-namespace hubrt::hubctl {
+namespace hubrt::mcap {
 
 // The text for `offered` ("[]\n" for none), as yaml-cpp's Dump of rosbag2's node writes it.
 // Thread-safe.
@@ -20,4 +20,4 @@ std::string offered_qos_yaml(const std::vector<dds::OfferedQos>& offered);
 // falls back to its default QoS). Never throws; thread-safe.
 std::vector<dds::OfferedQos> parse_offered_qos_yaml(const std::string& text);
 
-}  // namespace hubrt::hubctl
+}  // namespace hubrt::mcap

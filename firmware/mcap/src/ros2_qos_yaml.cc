@@ -1,10 +1,10 @@
-#include "ros2_qos_yaml.h"
+#include "hubrt/mcap/ros2_qos_yaml.h"
 
 #include <fmt/format.h>
 
 #include "hubrt/config/yaml_map.h"
 
-namespace hubrt::hubctl {
+namespace hubrt::mcap {
 namespace {
 
 // rmw's RMW_DURATION_INFINITE (rmw/types.h), which rosbag2 writes for DDS_INFINITY.
@@ -132,4 +132,4 @@ std::vector<dds::OfferedQos> parse_offered_qos_yaml(const std::string& text) {
   return out;
 }
 
-}  // namespace hubrt::hubctl
+}  // namespace hubrt::mcap
