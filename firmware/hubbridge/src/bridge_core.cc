@@ -1,5 +1,6 @@
 #include "bridge_core.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -111,6 +112,30 @@ Verdict Ros1Inbound::take(std::span<const std::uint8_t> bytes, std::string* why)
 void to_ros1(const BridgedType& type, const void* sample, std::vector<std::uint8_t>& out) {
   out.clear();
   ros1::encode(*type.type, sample, out);
+}
+
+void HeardPublishers::heard(std::string_view caller_id, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  for (auto& [name, at] : last_) {
+    if (name == caller_id) {
+      at = now_ns;
+      return;
+    }
+  }
+  if (last_.size() == kMax) {
+    last_.erase(std::min_element(last_.begin(), last_.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; }));
+  }
+  last_.emplace_back(std::string(caller_id), now_ns);
+}
+
+std::vector<std::string> HeardPublishers::since(std::int64_t since_ns) const {
+  const std::lock_guard lock(mutex_);
+  std::vector<std::string> out;
+  for (const auto& [name, at] : last_) {
+    if (at >= since_ns) out.push_back(name);
+  }
+  return out;
 }
 
 }  // namespace hubrt::hubbridge
