@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "hub_diagnostics.h"
+#include "peer_authentication.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -58,6 +59,7 @@ int run_list(const ListOptions& options) {
   }
   if (topics_by_participant.empty()) {
     fmt::print("no hubs seen on domain {} within {:.1f} s\n", participant->domain_id(), options.wait_s);
+    if (auto why = authentication_problem(*participant, options.domain)) fmt::print("{}\n", *why);
     return kExitFailed;
   }
   for (auto& [name, lines] : topics_by_participant) {

@@ -10,6 +10,7 @@
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/ros_names.h"
+#include "hubrt/dds/security_refusals.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/security/participant_security.h"
 
@@ -67,6 +68,9 @@ Expected<dds::Participant> join_domain(const DomainOptions& options, std::string
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) config->cyclone_xml = options.dds_config;
   if (!options.security_dir.empty()) {
+    // Before the participant: refused handshakes are counted (and logged rate-limited) from the
+    // start, so that a command finding nobody can say authentication failed (peer_authentication.h).
+    dds::count_security_refusals();
     const auto now = std::chrono::system_clock::now().time_since_epoch();
     auto secured = security::security_xml_for({options.security_dir, options.identity},
                                               std::chrono::duration_cast<std::chrono::seconds>(now).count());
