@@ -24,9 +24,7 @@ const msgs::FieldInfo* field_named(const msgs::TypeInfo& type, std::string_view 
 Expected<BridgedType> bridged_type(std::string_view name, const ros1::Messages& messages) {
   const msgs::TypeInfo* type = msgs::all_types().find(name);
   if (type == nullptr || type->descriptor == nullptr) {
-    return make_error(ErrorCode::kInvalidArgument,
-                      fmt::format("unknown message type '{}'; did you mean: {}", name,
-                                  fmt::join(msgs::all_types().suggest(name), ", ")));
+    return make_error(ErrorCode::kInvalidArgument, msgs::all_types().unknown_type_message(name));
   }
   BridgedType out;
   out.type = type;

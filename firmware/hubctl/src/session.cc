@@ -100,9 +100,7 @@ Expected<const msgs::TypeInfo*> topic_type(const dds::Participant& participant, 
   if (!type_hint.empty()) {
     const msgs::TypeInfo* type = types.find(type_hint);
     if (type == nullptr) {
-      return make_error(ErrorCode::kInvalidArgument,
-                        fmt::format("unknown message type '{}'; did you mean: {}", type_hint,
-                                    fmt::join(types.suggest(type_hint), ", ")));
+      return make_error(ErrorCode::kInvalidArgument, types.unknown_type_message(type_hint));
     }
     return type;
   }
