@@ -130,6 +130,17 @@ std::string_view name_of(RefusedWhat what) noexcept {
   return "nothing";
 }
 
+// Copies `text` into `out` (at most its size) with every byte that is not printable ASCII as '?':
+// a plugin's reason carries the peer's certificate subject, which the peer chose. Returns the size.
+std::size_t copy_printable(std::string_view text, char* out, std::size_t capacity) noexcept {
+  const std::size_t n = std::min(text.size(), capacity);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out[i] = c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
+  }
+  return n;
+}
+
 // Writes "DDS Security refused <what>: <reason>" on stderr: the first of a kind at once, then at
 // most one per kLogEvery saying how many were held back. `s.mutex` must be held. No allocation
 // (Cyclone's threads, the hub's cycle).
@@ -220,11 +231,8 @@ bool observe_security_log(std::string_view file, std::string_view function,
     case RefusedWhat::kNothing:
       break;
   }
-  const std::size_t n = std::min(message.size(), kMaxReason);
-  std::copy_n(message.begin(), n, s.last_reason.begin());
-  s.last_reason_size = n;
-
-  write_limited(s, line.what, message.substr(0, n));
+  s.last_reason_size = copy_printable(message, s.last_reason.data(), s.last_reason.size());
+  write_limited(s, line.what, {s.last_reason.data(), s.last_reason_size});
   return true;
 }
 
@@ -232,10 +240,8 @@ void report_refusal(RefusedWhat what, std::string_view reason) noexcept {
   if (!g_installed.load(std::memory_order_acquire) || what == RefusedWhat::kNothing) return;
   State& s = state();
   const std::lock_guard lock(s.mutex);
-  const std::size_t n = std::min(reason.size(), kMaxReason);
-  std::copy_n(reason.begin(), n, s.last_reason.begin());
-  s.last_reason_size = n;
-  write_limited(s, what, reason.substr(0, n));
+  s.last_reason_size = copy_printable(reason, s.last_reason.data(), s.last_reason.size());
+  write_limited(s, what, {s.last_reason.data(), s.last_reason_size});
 }
 
 }  // namespace detail

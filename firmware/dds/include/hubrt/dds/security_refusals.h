@@ -76,7 +76,8 @@ void count_security_refusals() noexcept;
 
 // The last refusal's Cyclone message ("" when none yet), e.g. "Begin handshake reply failed:
 // Certificate verification error: unable to get local issuer certificate(code: 0)", at most 300
-// bytes. Thread-safe; allocates the string returned.
+// bytes, every byte that is not printable ASCII as '?' (the peer chose its certificate's subject);
+// the log lines are written so too. Thread-safe; allocates the string returned.
 [[nodiscard]] std::string last_security_refusal();
 
 namespace detail {
