@@ -37,18 +37,19 @@ std::optional<std::string> authentication_problem(bool secured, const std::strin
         "--security and --identity)",
         peers.participants);
   }
-  if (refusals.authentication == 0 && !unauthenticated_peers) return std::nullopt;
-  const std::string seen = peers.participants == 0
-                               ? std::string("no participant shows a topic")
-                               : fmt::format("{} participant(s) on the domain, {} of them authenticated",
-                                             peers.participants, peers.with_topics);
+  // A peer that shows topics authenticated: then authentication is not why nobody reads.
+  if (peers.with_topics > 0 || (refusals.authentication == 0 && !unauthenticated_peers)) return std::nullopt;
+  const std::string seen =
+      peers.participants == 0
+          ? std::string("no participant shows a topic")
+          : fmt::format("{} participant(s) on the domain, none authenticated", peers.participants);
   return fmt::format(
       "authentication failed: {}; Cyclone: {}. This participant is {}: peers authenticate it only when their "
       "identity CA is that one, and it them only when theirs is",
       seen,
       refusals.authentication > 0 && !last_refusal.empty()
           ? last_refusal
-          : std::string("no handshake completed (no peer answered it)"),
+          : std::string("no handshake completed (the peers did not answer this participant's)"),
       identity);
 }
 

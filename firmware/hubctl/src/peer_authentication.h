@@ -26,8 +26,8 @@ struct PeersSeen {
 PeersSeen peers_seen(const dds::Participant& participant);
 
 // The sentence that replaces "nobody reads" when authentication is why, or nullopt:
-//   secured, and this process's Cyclone refused a handshake (refusals.authentication > 0) or
-//   peers were seen of which none showed a topic: "authentication failed: ..." naming our
+//   secured, no peer showed a topic, and this process's Cyclone refused a handshake
+//   (refusals.authentication > 0) or peers were seen: "authentication failed: ..." naming our
 //   identity and its CA (`identity`, security::describe_identity) and Cyclone's reason
 //   (`last_refusal`) or "no handshake completed";
 //   not secured, and peers were seen of which none showed a topic: they may be a secured station.
