@@ -29,9 +29,8 @@ PeersSeen peers_seen(const dds::Participant& participant);
 //   secured, no peer showed a topic, and this process's Cyclone refused a handshake
 //   (refusals.authentication > 0) or peers were seen: "authentication failed: ..." naming our
 //   identity and its CA (`identity`, security::describe_identity) and Cyclone's reason
-//   (`last_refusal`) or "no handshake completed";
-//   not secured, and peers were seen of which none showed a topic: they may be a secured station.
-// Pure.
+//   (`last_refusal`) or "no handshake completed". Never without security: a participant that
+//   shows no topic there may be anything. Pure.
 std::optional<std::string> authentication_problem(bool secured, const std::string& identity,
                                                   const dds::SecurityRefusalCounts& refusals,
                                                   const std::string& last_refusal, const PeersSeen& peers);

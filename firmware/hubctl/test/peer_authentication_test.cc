@@ -34,13 +34,8 @@ TEST(AuthenticationProblem, NotWhyNobodyReads) {
   EXPECT_FALSE(authentication_problem(true, kIdentity, {0, 0, 0, 5}, kReason, {3, 1}))
       << "a peer showed topics: it authenticated, the topic just has no reader";
   EXPECT_FALSE(authentication_problem(false, "", {}, "", {2, 2}));
-}
-
-TEST(AuthenticationProblem, UnsecuredAmongParticipantsThatShowNoTopic) {
-  const auto said = authentication_problem(false, "", {}, "", {1, 0});
-  ASSERT_TRUE(said);
-  EXPECT_NE(said->find("runs without DDS Security"), std::string::npos) << *said;
-  EXPECT_NE(said->find("give --security and --identity"), std::string::npos) << *said;
+  EXPECT_FALSE(authentication_problem(false, "", {}, "", {1, 0}))
+      << "without security, a participant with no topic may be anything (a tool, an observer)";
 }
 
 }  // namespace
