@@ -2,11 +2,11 @@
 // the message carries a peer's GUID and the security plugin's reason, which quotes the peer's
 // certificate subject — text the peer chose. Input: the source file Cyclone names on the first
 // line, the function on the second, the message after them.
-#include "hubrt/dds/security_refusals.h"
-
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+
+#include "hubrt/dds/security_refusals.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const bool installed = [] {

@@ -95,7 +95,8 @@ TEST(SecurityRefusals, CountsDistinctPeersAndLogsRateLimited) {
   EXPECT_NE(logged.find("some other warning"), std::string::npos) << logged;
   // The reason a peer can choose (its certificate's subject) reaches no log as control bytes.
   testing::internal::CaptureStderr();
-  dds_log(DDS_LC_WARNING, kHandshake, 1, "f", "Process handshake failed: subject: /CN=\x1b[2J\xff(code: 1)\n");
+  dds_log(DDS_LC_WARNING, kHandshake, 1, "f",
+          "Process handshake failed: subject: /CN=\x1b[2J\xff(code: 1)\n");
   const std::string escaped = testing::internal::GetCapturedStderr();
   EXPECT_EQ(last_security_refusal(), "Process handshake failed: subject: /CN=?[2J?(code: 1)");
   EXPECT_EQ(escaped.find('\x1b'), std::string::npos) << escaped;
