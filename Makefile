@@ -15,18 +15,23 @@
 #   make ros1-test   hubbridge between Debian's ROS 1 and the station, on the ASan build (docs/ros1-bridge.md)
 #   make ui-test     the operator screen (hubctl serve) in headless Chromium, reusing build/host-asan
 #                    (docs/operator-screen.md; screenshot in build/host-asan/ui-test/)
+#   make ecosystem-test  the MCAP files hubctl record and hubd's black box write, read by the
+#                    ecosystem's JavaScript readers (@mcap/core, rosmsg2-serialization; tests/js/README.md),
+#                    and hubctl foxglove driven by the protocol's own client (@foxglove/ws-protocol)
 #   make board BOARD=rpi4-tool-ecu   the board's Debian package in build/packages (docs/deploy.md)
 #   make deploy-test the Tool ECU package installed over ssh on an arm64 VM under systemd
 #                    (tests/deploy/README.md; slow the first time: builds the VM image)
 #   make deploy-docs regenerate the wiring tables of docs/deploy.md from boards/
+#   make safety-table run the tests that measure time to safe (and the net tier: root), then
+#                    regenerate docs/safety.md's table from what they wrote (build/host-asan)
 #   make format      clang-format every source file;  make lint  clang-format check + clang-tidy
 JOBS ?= 2
 CMAKE_BUILD = cmake --build --preset
 
 help:
-	@sed -n '1,22p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '1,24p' Makefile | sed 's/^# \{0,1\}//'
 
-.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test board deploy-test deploy-docs format format-check lint
+.PHONY: help deps demo build test test-asan test-tsan test-debug bench soak fuzz kernel-test cross-test net-test netem-test ros1-test ui-test ecosystem-test board deploy-test deploy-docs safety-table format format-check lint
 
 deps:
 	@toolchain/install-deps
@@ -98,8 +103,26 @@ ui-test:
 	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
 	@tests/ui/run --build-dir build/host-asan
 
+# The ecosystem tier (tests/js/README.md): reuses build/host-asan (builds only hubd and hubctl if the
+# default suite has not); the JavaScript packages from tests/js's lockfile (toolchain/install-js-deps).
+ecosystem-test: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS) --target hubd hubctl
+	@toolchain/install-js-deps --build-dir build/host-asan
+	@tests/js/run --build-dir build/host-asan
+
 cross-test: deps
 	@toolchain/cross-test $(or $(ARCH),arm64)
+
+# docs/safety.md's time-to-safe table (issue 29): the tests that measure it write their rows into
+# build/host-asan/time-to-safe/, the net tier its partition rows (needs root), then the generator.
+SAFETY_TESTS = hubrt_clock_step_test|hubrt_rsp_ecu_device_vanish_test|hubrt_hubd_stale_after_stop_test|hubrt_hubd_heartbeat_holds_test|hubrt_hubd_planner_gone_test
+safety-table: deps
+	@cmake --preset host-asan >/dev/null
+	@$(CMAKE_BUILD) host-asan -j$(JOBS)
+	@ctest --preset host-asan -R '^($(SAFETY_TESTS))$$'
+	@tests/net/run --build-dir build/host-asan
+	@toolchain/time-to-safe-table --build-dir build/host-asan
 
 # The net tier: the programs of the ASan build (after `make test` nothing is rebuilt).
 net-test: deps

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hubrt/msgs/all_types.h"
+#include "hubrt/msgs/definitions.h"
 #include "hubrt/msgs/sample_memory.h"
 #include "hubrt/ros1/codec.h"
 #include "hubrt/ros1/definition.h"
@@ -21,10 +22,10 @@ constexpr const char* kTypes[] = {"hub_msgs/msg/DockState",  "hub_msgs/msg/DockC
                                   "hub_msgs/msg/RspState",   "hub_msgs/msg/StationState"};
 constexpr std::size_t kTypeCount = sizeof kTypes / sizeof kTypes[0];
 
-// The hub types' ROS 1 definitions, built once from the tree the fuzzer runs in.
+// The hub types' ROS 1 definitions, built once from the .msg texts built into the harness.
 const hubrt::ros1::Messages& hub_messages() {
   static const hubrt::ros1::Messages messages = [] {
-    auto loaded = hubrt::ros1::load_ros2_tree_as_ros1(HUBRT_SOURCE_DIR "/ros2");
+    auto loaded = hubrt::ros1::load_definitions_as_ros1(hubrt::msgs::msg_definitions());
     if (!loaded) std::abort();
     return *loaded;
   }();

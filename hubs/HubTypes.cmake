@@ -18,6 +18,32 @@
 #   is never taken into it; the board programs' tests check both (firmware/hubd).
 include_guard(GLOBAL)
 
+# hubrt_add_hub_folders(<dir> [EXCEPT <name>...])
+#   Adds every folder <dir>/<hub>/ that has a CMakeLists.txt, in sorted order (the same build on
+#   every machine): first each one's msg/ (its message targets, which may DEPEND on
+#   hubrt_msgs_common), then the folders themselves. hubs/CMakeLists.txt adds hubs/ with it; the
+#   new-hub check (tests/new_hub) a copied folder, the same way.
+function(hubrt_add_hub_folders dir)
+  cmake_parse_arguments(PARSE_ARGV 1 A "" "" "EXCEPT")
+  file(GLOB cmakelists CONFIGURE_DEPENDS RELATIVE "${dir}" "${dir}/*/CMakeLists.txt")
+  list(SORT cmakelists)
+  set(hubs "")
+  foreach(file IN LISTS cmakelists)
+    get_filename_component(hub "${file}" DIRECTORY)
+    if(NOT hub IN_LIST A_EXCEPT)
+      list(APPEND hubs "${hub}")
+    endif()
+  endforeach()
+  foreach(hub IN LISTS hubs)
+    if(EXISTS "${dir}/${hub}/msg/CMakeLists.txt")
+      add_subdirectory("${dir}/${hub}/msg" "${CMAKE_CURRENT_BINARY_DIR}/${hub}/msg")
+    endif()
+  endforeach()
+  foreach(hub IN LISTS hubs)
+    add_subdirectory("${dir}/${hub}" "${CMAKE_CURRENT_BINARY_DIR}/${hub}")
+  endforeach()
+endfunction()
+
 # The device kinds DEVICES may name, in hal::LinuxDeviceLibraries' order.
 set(HUBRT_DEVICE_KINDS can modbus badge_reader)
 
@@ -58,18 +84,7 @@ function(_hubrt_message_targets_of out)
     if(t IN_LIST registered)
       list(APPEND found ${t})
     endif()
-    get_target_property(type ${t} TYPE)
-    set(links "")
-    if(NOT type STREQUAL "INTERFACE_LIBRARY")
-      get_target_property(direct ${t} LINK_LIBRARIES)
-      if(direct)
-        list(APPEND links ${direct})
-      endif()
-    endif()
-    get_target_property(interface ${t} INTERFACE_LINK_LIBRARIES)
-    if(interface)
-      list(APPEND links ${interface})
-    endif()
+    hubrt_linked_targets(${t} links)
     list(APPEND queue ${links})
   endwhile()
   set(${out} ${found} PARENT_SCOPE)
@@ -174,6 +189,6 @@ ${device_entries}  };
   add_library(${target} OBJECT ${sources})
   # The declaration of hub_types() is the composition root's (hubrt/assembly/hub_types.h); the
   # registry needs only that header, not the library (which itself uses the registry).
-  target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/firmware/assembly/include)
+  target_include_directories(${target} PUBLIC ${HUBRT_SOURCE_DIR}/firmware/assembly/include)
   target_link_libraries(${target} PUBLIC ${targets} hubrt_hal_linux ${device_libs} ${message_targets})
 endfunction()

@@ -12,14 +12,14 @@
 
 #include <dds/dds.h>
 
-#include "hubrt/dds/topic.h"
+#include "hubrt/dds/cdr_codec.h"
 #include "hubrt/msgs/type_info.h"
 
 namespace hubrt::fuzz {
 
-// The sertype Cyclone uses for topics of one generated type, and the deserialisation with it.
-// Created once per type per process on an isolated participant (no peers, no multicast: it sends
-// nothing and hears nothing). Not thread-safe (harnesses are single-threaded).
+// Cyclone's deserialisation of one generated type (dds::CdrCodec), with the harnesses' input
+// format. Created once per type per process on an isolated participant (no peers, no multicast: it
+// sends nothing and hears nothing). Not thread-safe (harnesses are single-threaded).
 class CdrDecoder {
  public:
   // The decoder for `type` (a topic type: type.descriptor != nullptr). Aborts with a message
@@ -41,12 +41,10 @@ class CdrDecoder {
   [[nodiscard]] std::vector<std::uint8_t> encode(const void* sample) const;
 
  private:
-  CdrDecoder(const msgs::TypeInfo& type, dds::UntypedTopic topic, const struct ddsi_sertype* sertype)
-      : type_(&type), topic_(std::move(topic)), sertype_(sertype) {}
+  CdrDecoder(const msgs::TypeInfo& type, dds::CdrCodec codec) : type_(&type), codec_(std::move(codec)) {}
 
   const msgs::TypeInfo* type_;
-  dds::UntypedTopic topic_;             // keeps the sertype alive
-  const struct ddsi_sertype* sertype_;  // Cyclone's, for topic_
+  dds::CdrCodec codec_;
 };
 
 }  // namespace hubrt::fuzz

@@ -51,7 +51,7 @@ class HubLayoutUnderFuzz {
       runtime::Node<hub_api::detail::HubLevelLogic<HubTypes>> hub_node(
           options(hub_name), hub_api::detail::HubLevelLogic<HubTypes>(routes_), source_, sink_,
           ops_of<HubCommand>());
-      hub_node.logic().watch(hub_node.tracker());
+      hub_node.logic().watch(hub_node.tracker(), hub_node.last_valid_command());
       source_.post(&command);
       for (int cycle = 0; cycle <= kCyclesAfter; ++cycle) {
         clock.advance(kCycle);

@@ -30,7 +30,10 @@ template <class Command>
 class OneShotSource final : public runtime::CommandSource<Command> {
  public:
   void post(const Command* command) noexcept { pending_ = command; }
-  Result<const Command*> next() noexcept override { return std::exchange(pending_, nullptr); }
+  // Built in-process: no source timestamp, as old as its arrival.
+  Result<runtime::ReceivedCommand<Command>> next() noexcept override {
+    return runtime::ReceivedCommand<Command>{std::exchange(pending_, nullptr), std::nullopt};
+  }
 
  private:
   const Command* pending_ = nullptr;

@@ -15,9 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
-
-#include "hub_process.h"
 
 namespace hubrt::conformance_test {
 namespace {
@@ -45,14 +44,14 @@ TEST(ManyHubsConformance, ThirtyTwoHubsOnOneHostAllConform) {
   ASSERT_TRUE(domain) << domain.error().message;
   const auto dir = std::filesystem::temp_directory_path() / ("hubrt-many-hubs-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
-  std::vector<integration::HubProcess> hubs;
+  std::vector<test_support::HubProcess> hubs;
   std::vector<std::string> args = {"conformance", "--json", "--parallel", "--thresholds", HUBRT_CI_THRESHOLDS,
                                    "--duration",  "2",      "--hold",     "0.6",          "--latency-samples",
                                    "20"};
   for (int i = 1; i <= kHubs; ++i) {
-    integration::HubProcessOptions options;
+    test_support::HubProcessOptions options;
     options.hub = hub_file(dir, i);
-    auto hub = integration::HubProcess::start(*domain, options);
+    auto hub = test_support::HubProcess::start(*domain, options);
     ASSERT_TRUE(hub) << "hub " << i << ": " << hub.error().message;
     hubs.push_back(std::move(*hub));
     args.emplace_back("--hub");

@@ -12,9 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
-
-#include "hub_process.h"
 
 namespace hubrt::conformance_test {
 namespace {
@@ -44,13 +43,13 @@ TEST(ParallelConformance, TwoHubsAtOnceBothConform) {
   const auto dir =
       std::filesystem::temp_directory_path() / ("hubrt-parallel-conformance-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
-  integration::HubProcessOptions node_layout;
+  test_support::HubProcessOptions node_layout;
   node_layout.hub = "dock_ecu";
-  auto first = integration::HubProcess::start(*domain, node_layout);
+  auto first = test_support::HubProcess::start(*domain, node_layout);
   ASSERT_TRUE(first) << first.error().message;
-  integration::HubProcessOptions hub_layout;
+  test_support::HubProcessOptions hub_layout;
   hub_layout.hub = hub_layout_file(dir);
-  auto second = integration::HubProcess::start(*domain, hub_layout);
+  auto second = test_support::HubProcess::start(*domain, hub_layout);
   ASSERT_TRUE(second) << second.error().message;
 
   test_support::Environment env = domain->env();

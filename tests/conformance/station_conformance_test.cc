@@ -13,9 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
-
-#include "hub_process.h"
 
 namespace hubrt::conformance_test {
 namespace {
@@ -104,9 +103,9 @@ class StationConformance : public ::testing::TestWithParam<StationHub> {
       std::filesystem::create_directories(dir_);
     }
     for (const StationHub& station_hub : hub_layout ? kStationHubLayout : kStation) {
-      integration::HubProcessOptions options;
+      test_support::HubProcessOptions options;
       options.hub = hub_layout ? hub_layout_file(station_hub.hub, dir_) : station_hub.hub;
-      auto hub = integration::HubProcess::start(*domain_, options);
+      auto hub = test_support::HubProcess::start(*domain_, options);
       ASSERT_TRUE(hub) << hub.error().message;
       hubs_.push_back(std::move(*hub));
     }
@@ -152,7 +151,7 @@ class StationConformance : public ::testing::TestWithParam<StationHub> {
 
   std::optional<test_support::TestDomain> domain_;
   std::filesystem::path dir_;
-  std::vector<integration::HubProcess> hubs_;
+  std::vector<test_support::HubProcess> hubs_;
 };
 
 std::string failures(const nlohmann::json& report) {
@@ -204,9 +203,9 @@ INSTANTIATE_TEST_SUITE_P(StationHubLayout, StationConformance, ::testing::Values
 TEST(StationConformanceVerdict, AHubThatDoesNotMeetTheExpectationFails) {
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
-  integration::HubProcessOptions options;
+  test_support::HubProcessOptions options;
   options.hub = "dock_ecu";
-  auto hub = integration::HubProcess::start(*domain, options);
+  auto hub = test_support::HubProcess::start(*domain, options);
   ASSERT_TRUE(hub) << hub.error().message;
   test_support::Environment env = domain->env();
   env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);

@@ -20,11 +20,13 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_process.h"
 
-#include "hub_process.h"
 #include "tool_messages.h"
 
 namespace hubrt::integration {
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 namespace {
 
 using std::chrono::milliseconds;

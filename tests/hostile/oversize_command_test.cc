@@ -32,11 +32,13 @@
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/test_support/hub_process.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::integration {
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 namespace {
 
 using dock_ecu::DockState;

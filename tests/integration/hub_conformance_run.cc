@@ -7,11 +7,12 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
 
-#include "hub_process.h"
-
 namespace hubrt::integration {
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 
 void expect_hub_conforms(const HubConformanceRun& run) {
   auto domain = test_support::TestDomain::acquire();
@@ -36,7 +37,7 @@ void expect_hub_conforms(const HubConformanceRun& run) {
   ASSERT_TRUE(hub) << hub.error().message;
 
   test_support::Environment env = domain->env();
-  env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
+  env.emplace_back("HUBRT_CONFIG_DIR", test_support::config_dir());
   auto suite =
       test_support::ChildProcess::start(run.hubctl,
                                         {"conformance", "--hub", run.hub_name, "--thresholds", run.thresholds,

@@ -14,10 +14,10 @@
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/participant.h"
 #include "hubrt/dds/ros_names.h"
-
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
+using test_support::Finished;
 namespace {
 
 namespace fs = std::filesystem;

@@ -11,10 +11,10 @@
 
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/participant.h"
-
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
+using test_support::Finished;
 namespace {
 
 using std::chrono::seconds;

@@ -21,11 +21,13 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 
-#include "hub_process.h"
 #include "operator_messages.h"
 
 namespace hubrt::integration {
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 namespace {
 
 using operator_hub::OperatorPanelCommand;

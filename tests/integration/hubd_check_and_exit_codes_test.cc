@@ -14,10 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/base/exit_codes.h"
-
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
+using test_support::Finished;
 namespace {
 
 namespace fs = std::filesystem;
@@ -67,7 +67,8 @@ TEST_F(HubdCheckTest, PassesWithNoNetworkAtAll) {
   for (const std::string hub : {"tool_ecu", "rsp_ecu", "dock_ecu"}) {
     std::vector<std::string> args{"-n"};
     for (const std::string& word : test_support::target_emulator()) args.push_back(word);
-    for (const std::string arg : {HUBRT_HUBD_PATH, "--board", "host-sim", "--hub", hub.c_str(), "--check"}) {
+    for (const std::string& arg : {test_support::hubd_path(), std::string("--board"), std::string("host-sim"),
+                                   std::string("--hub"), hub, std::string("--check")}) {
       args.push_back(arg);
     }
     const Finished f = run_program("unshare", args);
@@ -94,7 +95,7 @@ TEST_F(HubdCheckTest, OpensNoDeviceAndNoSocketOnARealBoard) {
     // LeakSanitizer cannot run under ptrace; leaks are not what this test looks at.
     const Finished f = run_program("strace",
                                    {"-f", "-qq", "-e", "trace=openat,open,socket", "-o", trace.string(),
-                                    HUBRT_HUBD_PATH, "--board", board, "--check"},
+                                    test_support::hubd_path(), "--board", board, "--check"},
                                    {{"ASAN_OPTIONS", "detect_leaks=0"}});
     EXPECT_TRUE(f.status.exited_with(0)) << board << ": " << f.status.describe() << "\n" << f.output;
     EXPECT_NE(f.output.find("with the linux backend"), std::string::npos) << f.output;
@@ -118,7 +119,7 @@ TEST_F(HubdCheckTest, StillRefusesAHubTheBoardCannotCarry) {
   const fs::path path = dir_ / "rsp_ecu.yaml";
   std::ofstream(path) << hub;
   const Finished f =
-      run_program(HUBRT_HUBD_PATH, {"--board", "rpi4-rsp-ecu", "--hub", path.string(), "--check"});
+      run_program(test_support::hubd_path(), {"--board", "rpi4-rsp-ecu", "--hub", path.string(), "--check"});
   EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("rsp.no_such_valve"), std::string::npos) << f.output;
 }
@@ -145,7 +146,7 @@ TEST_F(HubdCheckTest, StillRefusesWhatBuildingTheNodesWouldRefuse) {
     const fs::path path = dir_ / (c.hub + ".yaml");
     std::ofstream(path) << hub;
     const Finished f =
-        run_program(HUBRT_HUBD_PATH, {"--board", "host-sim", "--hub", path.string(), "--check"});
+        run_program(test_support::hubd_path(), {"--board", "host-sim", "--hub", path.string(), "--check"});
     EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage)) << c.hub << ": " << f.status.describe() << "\n"
                                                           << f.output;
     EXPECT_NE(f.output.find(c.message), std::string::npos) << f.output;
@@ -163,7 +164,7 @@ TEST(HubdExitCodes, CommandLineErrorsAreUsageErrors) {
       {"--board", "host-sim", "--hub", "dock_ecu", "--log-level", "chatty"},
   };
   for (const auto& args : bad) {
-    const Finished f = run_program(HUBRT_HUBD_PATH, args);
+    const Finished f = run_program(test_support::hubd_path(), args);
     EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage))
         << fmt::format("hubd {}: ", fmt::join(args, " ")) << f.status.describe() << "\n"
         << f.output;
@@ -171,13 +172,13 @@ TEST(HubdExitCodes, CommandLineErrorsAreUsageErrors) {
 }
 
 TEST(HubdExitCodes, HelpExitsZeroAndPrintsTheTable) {
-  const Finished f = run_program(HUBRT_HUBD_PATH, {"--help"});
+  const Finished f = run_program(test_support::hubd_path(), {"--help"});
   EXPECT_TRUE(f.status.exited_with(exit_codes::kOk)) << f.status.describe();
   EXPECT_NE(f.output.find(exit_codes::kHelpFooter), std::string::npos) << f.output;
 }
 
 TEST(HubdExitCodes, AConfigurationErrorIsAUsageError) {
-  const Finished f = run_program(HUBRT_HUBD_PATH, {"--board", "no-such-board", "--check"});
+  const Finished f = run_program(test_support::hubd_path(), {"--board", "no-such-board", "--check"});
   EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage)) << f.status.describe() << "\n" << f.output;
 }
 

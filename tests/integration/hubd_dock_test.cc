@@ -6,19 +6,15 @@
 #include <functional>
 #include <thread>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 
-#include "hubrt/dds/reader.h"
-#include "hubrt/dds/sample.h"
-#include "hubrt/dds/topic.h"
-#include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
-#include "hubrt/sim/sim_bridge_stage.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -27,10 +23,10 @@ using dock_ecu::DockCommand;
 using dock_ecu::DockState;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-
-// Generous: a busy 2-core CI machine running sanitizer builds in parallel. These tests check
-// behaviour, not timing; the benchmarks measure timing.
-constexpr auto kPatience = seconds(15);
+using test_support::HubProcessOptions;
+using test_support::HubUnderTest;
+using test_support::kPatience;
+using test_support::StateStream;
 
 std::string error_list(const DockState& s) {
   std::string out;
@@ -38,168 +34,115 @@ std::string error_list(const DockState& s) {
   return out;
 }
 
+DockCommand dock_command(const char* action, const char* target_name = "dock",
+                         const char* target_type = "dock") {
+  DockCommand command{};
+  hubrt::msgs::typed::assign(command.target_type, target_type);
+  hubrt::msgs::typed::assign(command.target_name, target_name);
+  hubrt::msgs::typed::assign(command.action, action);
+  return command;
+}
+
 class HubdDockTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
-    auto command_topic = dds::Topic<DockCommand>::create(*participant_, "/dock/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<DockCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<DockState>::create(*participant_, "/dock_ecu/dock/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
-    auto reader = dds::Reader<DockState>::create(*participant_, *state_topic_);
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
+    ASSERT_NO_FATAL_FAILURE(hub_.open());
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(commands_, "/dock/command"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/dock_ecu/dock/state"));
   }
 
   void start_hub(std::vector<std::string> extra_args = {}) {
-    HubProcessOptions options;
-    options.extra_args = std::move(extra_args);
-    auto hub = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
+    hub_.start({.extra_args = std::move(extra_args)});
   }
 
-  // Takes States until one satisfies `predicate`; false after `timeout`.
-  bool wait_for_state(const std::function<bool(const DockState&)>& predicate, Duration timeout = kPatience) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      const Result<bool> taken = state_reader_->take_next(state_);
-      if (taken.is_ok() && taken.value()) {
-        if (predicate(state_.get())) return true;
-        continue;
-      }
-      std::this_thread::sleep_for(milliseconds(2));
-    }
-    return false;
+  ::testing::AssertionResult wait_for(const std::function<bool(const DockState&)>& predicate,
+                                      std::string_view what) {
+    return hub_.wait_for(*states_, predicate, what);
   }
+  const DockState& state() const { return states_->latest(); }
 
-  void send(const char* action, const char* target_name = "dock", const char* target_type = "dock") {
-    DockCommand command{};
-    hubrt::msgs::typed::assign(command.target_type, target_type);
-    hubrt::msgs::typed::assign(command.target_name, target_name);
-    hubrt::msgs::typed::assign(command.action, action);
-    ASSERT_TRUE(command_writer_->write(command).is_ok());
-  }
-
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<DockCommand>> command_topic_;
-  std::optional<dds::Writer<DockCommand>> command_writer_;
-  std::optional<dds::Topic<DockState>> state_topic_;
-  std::optional<dds::Reader<DockState>> state_reader_;
-  dds::Sample<DockState> state_;
-  std::optional<HubProcess> hub_;
+  dds::Writer<DockCommand>* commands_ = nullptr;
+  StateStream<DockState>* states_ = nullptr;
+  HubUnderTest hub_;
 };
 
 TEST_F(HubdDockTest, PublishesItsStateAtTheConfiguredRateWithIncreasingSequence) {
-  start_hub({"--rate", "20"});
-  ASSERT_TRUE(wait_for_state([](const DockState&) { return true; })) << hub_->output();
-  std::uint64_t first_seq = state_.get().header.seq;
+  ASSERT_NO_FATAL_FAILURE(start_hub({"--rate", "20"}));
+  ASSERT_TRUE(wait_for([](const DockState&) { return true; }, "any State"));
+  std::uint64_t first_seq = state().header.seq;
   std::uint64_t last_seq = first_seq;
   int samples = 1;
   const auto start = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - start < seconds(2)) {
-    const Result<bool> taken = state_reader_->take_next(state_);
-    if (!taken.is_ok() || !taken.value()) {
-      std::this_thread::sleep_for(milliseconds(2));
-      continue;
-    }
-    EXPECT_GT(state_.get().header.seq, last_seq) << "sequence numbers only go up";
-    last_seq = state_.get().header.seq;
+  for (auto now = start; now - start < seconds(2); now = std::chrono::steady_clock::now()) {
+    if (!states_->take_any(start + seconds(2) - now)) break;
+    EXPECT_GT(state().header.seq, last_seq) << "sequence numbers only go up";
+    last_seq = state().header.seq;
     ++samples;
   }
   // 2 s at 20 Hz is 40 States. Bounds are wide (a loaded machine may stall a process for a
   // while); they still catch a hub that publishes at 10 Hz or only on change.
-  EXPECT_GE(samples, 25) << hub_->output();
+  EXPECT_GE(samples, 25) << hub_.output();
   EXPECT_LE(samples, 60);
   EXPECT_LE(last_seq - first_seq + 1 - static_cast<std::uint64_t>(samples), 2u) << "States lost on loopback";
-  EXPECT_STREQ(state_.get().name, "dock");
-  ASSERT_EQ(state_.get().slots._length, 4u);
+  EXPECT_STREQ(state().name, "dock");
+  ASSERT_EQ(state().slots._length, 4u);
 }
 
 TEST_F(HubdDockTest, EchoesACommandAndDropsFreshMsgWhenCommandsStop) {
-  start_hub();
-  ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience));
-  ASSERT_TRUE(wait_for_state([](const DockState& s) { return !s.fresh_msg; }))
-      << "not fresh before any command";
+  ASSERT_NO_FATAL_FAILURE(start_hub());
+  ASSERT_TRUE(wait_for([](const DockState& s) { return !s.fresh_msg; }, "not fresh before any command"));
   // Like the planner: the same command, repeatedly.
-  std::atomic<bool> sending{true};
-  std::thread planner([&] {
-    while (sending) {
-      send("monitor");
-      std::this_thread::sleep_for(milliseconds(50));
-    }
-  });
-  const bool echoed = wait_for_state([](const DockState& s) {
-    return s.fresh_msg && std::string(s.echo.action) == "monitor" &&
-           std::string(s.echo.target_name) == "dock";
-  });
-  sending = false;
-  planner.join();
-  ASSERT_TRUE(echoed) << hub_->output();
-  EXPECT_STREQ(state_.get().echo.target_type, "dock");
-  EXPECT_EQ(state_.get().error_list._length, 0u) << error_list(state_.get());
+  hub_.plan(*commands_, dock_command("monitor"));
+  const bool echoed = wait_for(
+      [](const DockState& s) {
+        return s.fresh_msg && std::string(s.echo.action) == "monitor" &&
+               std::string(s.echo.target_name) == "dock";
+      },
+      "fresh, echoing 'monitor' to 'dock'");
+  hub_.stop_planner();
+  ASSERT_TRUE(echoed) << hub_.output();
+  EXPECT_STREQ(state().echo.target_type, "dock");
+  EXPECT_EQ(state().error_list._length, 0u) << error_list(state());
   // The planner went quiet: after the 1 s command timeout fresh_msg turns false with an error.
-  ASSERT_TRUE(wait_for_state([](const DockState& s) { return !s.fresh_msg; })) << hub_->output();
-  EXPECT_NE(error_list(state_.get()).find("command timeout"), std::string::npos) << error_list(state_.get());
-  EXPECT_STREQ(state_.get().echo.action, "monitor") << "the echo still shows the last command";
+  ASSERT_TRUE(
+      wait_for([](const DockState& s) { return !s.fresh_msg; }, "not fresh after the planner stopped"));
+  EXPECT_NE(error_list(state()).find("command timeout"), std::string::npos) << error_list(state());
+  EXPECT_STREQ(state().echo.action, "monitor") << "the echo still shows the last command";
 }
 
 TEST_F(HubdDockTest, RejectsABadCommandWithItsReason) {
-  start_hub();
-  ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience));
-  send("dance");
-  ASSERT_TRUE(wait_for_state([](const DockState& s) {
-    return error_list(s).find("rejected command: unknown action 'dance' (expected one of: monitor, reset)") !=
-           std::string::npos;
-  })) << hub_->output();
-  EXPECT_FALSE(state_.get().fresh_msg);
-  EXPECT_TRUE(hub_->process().wait_for_output("rejected command", kPatience)) << "and it is logged";
+  ASSERT_NO_FATAL_FAILURE(start_hub());
+  ASSERT_TRUE(commands_->write(dock_command("dance")).is_ok());
+  ASSERT_TRUE(wait_for(
+      [](const DockState& s) {
+        return error_list(s).find(
+                   "rejected command: unknown action 'dance' (expected one of: monitor, reset)") !=
+               std::string::npos;
+      },
+      "the rejection of 'dance' in error_list"));
+  EXPECT_FALSE(state().fresh_msg);
+  EXPECT_TRUE(hub_.hub().process().wait_for_output("rejected command", kPatience)) << "and it is logged";
 }
 
 TEST_F(HubdDockTest, AStateChangesWhenASimulatedSensorChanges) {
-  start_hub();
-  ASSERT_TRUE(wait_for_state(
-      [](const DockState& s) { return s.slots._length == 4 && !s.slots._buffer[2].occupied; }));
-  auto topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(*participant_, sim::kSimInputTopic);
-  ASSERT_TRUE(topic);
-  auto writer = dds::Writer<hub_msgs_msg_dds__SimInput_>::create(*participant_, *topic);
-  ASSERT_TRUE(writer);
-  ASSERT_TRUE(writer->wait_for_readers(1, kPatience));
-  hub_msgs_msg_dds__SimInput_ input{};
-  input.hub = const_cast<char*>("dock_ecu");                 // NOLINT
-  input.signal = const_cast<char*>("dock.slot.smart_tool");  // NOLINT
-  input.active = true;
-  ASSERT_TRUE(writer->write(input).is_ok());
-  ASSERT_TRUE(wait_for_state([](const DockState& s) {
-    return s.slots._length == 4 && s.slots._buffer[2].occupied;
-  })) << hub_->output();
-  EXPECT_STREQ(state_.get().slots._buffer[2].name, "smart_tool");
+  ASSERT_NO_FATAL_FAILURE(start_hub());
+  ASSERT_TRUE(
+      wait_for([](const DockState& s) { return s.slots._length == 4 && !s.slots._buffer[2].occupied; },
+               "4 slots, the third empty"));
+  ASSERT_NO_FATAL_FAILURE(hub_.sim_input("dock_ecu", "dock.slot.smart_tool", true));
+  ASSERT_TRUE(wait_for([](const DockState& s) { return s.slots._length == 4 && s.slots._buffer[2].occupied; },
+                       "the third slot occupied"));
+  EXPECT_STREQ(state().slots._buffer[2].name, "smart_tool");
 }
 
 TEST_F(HubdDockTest, StopsCleanlyOnSigtermWithOutputsSafe) {
-  start_hub();
-  ASSERT_TRUE(hub_->process().signal(SIGTERM));
-  auto status = hub_->process().wait(kPatience);
-  ASSERT_TRUE(status) << status.error().message;
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_->output();
-  EXPECT_NE(hub_->output().find("outputs driven to their safe state"), std::string::npos) << hub_->output();
+  ASSERT_NO_FATAL_FAILURE(start_hub());
+  EXPECT_TRUE(hub_.stops_cleanly(SIGTERM));
 }
 
 TEST_F(HubdDockTest, TellsSystemdItIsReadyAndPingsTheWatchdog) {
   // A datagram socket standing in for systemd's notify socket.
-  const std::string path = fmt::format("/tmp/hubrt-notify-{}-{}.sock", getpid(), domain_->domain_id());
+  const std::string path = fmt::format("/tmp/hubrt-notify-{}-{}.sock", getpid(), hub_.domain().domain_id());
   const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   ASSERT_GE(fd, 0);
   sockaddr_un address{};
@@ -209,8 +152,8 @@ TEST_F(HubdDockTest, TellsSystemdItIsReadyAndPingsTheWatchdog) {
   ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);  // NOLINT
   HubProcessOptions options;
   options.extra_env = {{"NOTIFY_SOCKET", path}, {"WATCHDOG_USEC", "400000"}};
-  auto hub = HubProcess::start(*domain_, options);
-  ASSERT_TRUE(hub) << hub.error().message;
+  ASSERT_NO_FATAL_FAILURE(hub_.start_unmatched(options));
+  auto* hub = &hub_.hub();
   std::string received;
   const auto deadline = std::chrono::steady_clock::now() + kPatience;
   while (std::chrono::steady_clock::now() < deadline && (received.find("READY=1") == std::string::npos ||

@@ -13,9 +13,9 @@
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -43,41 +43,36 @@ std::optional<Clock::time_point> take_one(dds::Reader<DockState>& reader, dds::S
 }
 
 TEST(HubdFirstState, ANewSubscriberGetsAStateLongBeforeTheNextHeartbeatAt10Hz) {
-  auto domain = test_support::TestDomain::acquire();
-  ASSERT_TRUE(domain) << domain.error().message;
-  auto participant = dds::Participant::create(domain->config(), "test-subscribers");
-  ASSERT_TRUE(participant) << participant.error().message;
-  auto topic = dds::Topic<DockState>::create(*participant, kStateTopic);
+  test_support::HubUnderTest hub;
+  ASSERT_NO_FATAL_FAILURE(hub.open("test-subscribers"));
+  auto topic = dds::Topic<DockState>::create(hub.participant(), kStateTopic);
   ASSERT_TRUE(topic) << topic.error().message;
-  auto watcher = dds::Reader<DockState>::create(*participant, *topic);
+  auto watcher = dds::Reader<DockState>::create(hub.participant(), *topic);
   ASSERT_TRUE(watcher) << watcher.error().message;
   // The shipped Dock ECU rate: 10 Hz, a 100 ms period.
   constexpr double kPeriodMs = 100;
-  HubProcessOptions options;
-  options.extra_args = {"--rate", "10"};
-  auto hub = HubProcess::start(*domain, options);
-  ASSERT_TRUE(hub) << hub.error().message;
+  ASSERT_NO_FATAL_FAILURE(hub.start({.extra_args = {"--rate", "10"}}));
 
   // Three rounds: each time a heartbeat has just arrived (fresh: stamped less than 10 ms ago, so
   // the next one is about a period away), a new reader subscribes and waits for its first State.
   std::vector<double> waits_ms;
   dds::Sample<DockState> state;
   for (int attempt = 0; attempt < 50 && waits_ms.size() < 3; ++attempt) {
-    ASSERT_TRUE(take_one(*watcher, state, std::chrono::seconds(10))) << hub->output();
+    ASSERT_TRUE(take_one(*watcher, state, std::chrono::seconds(10))) << hub.output();
     const auto& stamp = state.get().header.stamp;
     const double age_s = wall_seconds() - (stamp.sec + stamp.nanosec * 1e-9);
     if (age_s > 0.010) continue;  // delivered late: the next heartbeat may be near
     const auto subscribed_at = Clock::now();
-    auto late = dds::Reader<DockState>::create(*participant, *topic);
+    auto late = dds::Reader<DockState>::create(hub.participant(), *topic);
     ASSERT_TRUE(late) << late.error().message;
     dds::Sample<DockState> first;
     const auto got = take_one(*late, first, std::chrono::seconds(5));
-    ASSERT_TRUE(got) << "the new reader got no State at all: " << hub->output();
+    ASSERT_TRUE(got) << "the new reader got no State at all: " << hub.output();
     waits_ms.push_back(std::chrono::duration<double, std::milli>(*got - subscribed_at).count());
     while (watcher->take_next(state).value_or(false)) {
     }
   }
-  ASSERT_EQ(waits_ms.size(), 3u) << "no fresh heartbeat to start from: " << hub->output();
+  ASSERT_EQ(waits_ms.size(), 3u) << "no fresh heartbeat to start from: " << hub.output();
   std::cout << "new reader -> first State: " << waits_ms[0] << ", " << waits_ms[1] << ", " << waits_ms[2]
             << " ms\n";
   // Without the publish on match the first State is the next heartbeat: about a period (100 ms)

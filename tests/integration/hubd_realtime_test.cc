@@ -9,9 +9,10 @@
 #include <sys/prctl.h>
 #include <sys/resource.h>
 
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
+using test_support::run_hubd;
 namespace {
 
 using std::chrono::seconds;

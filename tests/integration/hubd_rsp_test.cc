@@ -2,27 +2,20 @@
 // domain, in both layouts. The test plays the planner (commands), the Dock ECU (its State, which
 // the RSP hub consumes through its `dock` subscription) and the world (pressure, via /sim/input),
 // and watches the hub's State and the simulated actuators (/sim/rsp_ecu/signals).
-#include <unistd.h>
-
+#include <array>
 #include <atomic>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
-#include "hubrt/dds/topic.h"
-#include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
 #include "hubrt/sim/sim_bridge_stage.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 #include "rsp_messages.h"
 
 namespace hubrt::integration {
@@ -32,8 +25,8 @@ using dock_ecu::DockState;
 using rsp_ecu::RspCommand;
 using rsp_ecu::RspEcuTypes;
 using rsp_ecu::RspState;
-using std::chrono::milliseconds;
-namespace fs = std::filesystem;
+using test_support::HubUnderTest;
+using test_support::StateStream;
 
 // Generous: a busy 2-core machine running sanitizer builds in parallel. These tests check
 // behaviour, not timing.
@@ -91,120 +84,37 @@ Seen seen_from(const RspState& s) {
   return out;
 }
 
-char* wire(const char* s) {
-  return const_cast<char*>(s);
-}  // NOLINT
-
 class HubdRspTest : public ::testing::TestWithParam<Layout> {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    HubProcessOptions options;
-    options.hub = "rsp_ecu";
-    if (GetParam() == Layout::kHub) {
-      // The shipped configuration with the hub layout.
-      std::ifstream in(std::string(HUBRT_SOURCE_DIR) + "/hubs/rsp_ecu/rsp_ecu.yaml");
-      std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      const auto at = text.find("layout: node_type");
-      ASSERT_NE(at, std::string::npos);
-      text.replace(at, 17, "layout: hub");
-      hub_file_ = fs::temp_directory_path() / fmt::format("hubrt-rsp-hub-layout-{}.yaml", getpid());
-      std::ofstream(hub_file_) << text;
-      options.hub = hub_file_.string();
-    }
-
-    auto participant = dds::Participant::create(domain_->config(), "test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
-    ASSERT_NO_FATAL_FAILURE(make_endpoints());
-
-    auto hub = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(dock_writer_->wait_for_readers(1, kPatience)) << hub_->output();
-    if (node_writer_) {
-      ASSERT_TRUE(node_writer_->wait_for_readers(1, kPatience)) << hub_->output();
-    } else {
-      ASSERT_TRUE(hub_writer_->wait_for_readers(1, kPatience)) << hub_->output();
-    }
-    ASSERT_TRUE(sim_input_writer_->wait_for_readers(1, kPatience)) << hub_->output();
-    planner_ = std::thread([this] { plan(); });
-  }
-
-  void TearDown() override {
-    running_ = false;
-    if (planner_.joinable()) planner_.join();
-    if (!hub_file_.empty()) fs::remove(hub_file_);
-  }
-
-  void make_endpoints() {
-    auto dock_topic = dds::Topic<DockState>::create(*participant_, "/dock_ecu/dock/state");
-    ASSERT_TRUE(dock_topic) << dock_topic.error().message;
-    dock_topic_.emplace(std::move(*dock_topic));
-    auto dock_writer = dds::Writer<DockState>::create(*participant_, *dock_topic_);
-    ASSERT_TRUE(dock_writer) << dock_writer.error().message;
-    dock_writer_.emplace(std::move(*dock_writer));
-
+    ASSERT_NO_FATAL_FAILURE(hub_.open());
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(dock_writer_, "/dock_ecu/dock/state"));
     if (GetParam() == Layout::kNodeType) {
-      auto command_topic = dds::Topic<RspCommand>::create(*participant_, "/tool_changer/command");
-      ASSERT_TRUE(command_topic) << command_topic.error().message;
-      node_command_topic_.emplace(std::move(*command_topic));
-      auto writer = dds::Writer<RspCommand>::create(*participant_, *node_command_topic_);
-      ASSERT_TRUE(writer) << writer.error().message;
-      node_writer_.emplace(std::move(*writer));
-      auto state_topic = dds::Topic<RspState>::create(*participant_, "/rsp_ecu/rsp/state");
-      ASSERT_TRUE(state_topic) << state_topic.error().message;
-      node_state_topic_.emplace(std::move(*state_topic));
-      auto reader = dds::Reader<RspState>::create(*participant_, *node_state_topic_);
-      ASSERT_TRUE(reader) << reader.error().message;
-      node_reader_.emplace(std::move(*reader));
+      ASSERT_NO_FATAL_FAILURE(hub_.make_writer(node_writer_, "/tool_changer/command"));
+      ASSERT_NO_FATAL_FAILURE(hub_.make_stream(node_states_, "/rsp_ecu/rsp/state"));
     } else {
-      auto command_topic = dds::Topic<RspEcuTypes::Command::Wire>::create(*participant_, "/rsp_ecu/command");
-      ASSERT_TRUE(command_topic) << command_topic.error().message;
-      hub_command_topic_.emplace(std::move(*command_topic));
-      auto writer = dds::Writer<RspEcuTypes::Command::Wire>::create(*participant_, *hub_command_topic_);
-      ASSERT_TRUE(writer) << writer.error().message;
-      hub_writer_.emplace(std::move(*writer));
-      auto state_topic = dds::Topic<RspEcuTypes::State::Wire>::create(*participant_, "/rsp_ecu/state");
-      ASSERT_TRUE(state_topic) << state_topic.error().message;
-      hub_state_topic_.emplace(std::move(*state_topic));
-      auto reader = dds::Reader<RspEcuTypes::State::Wire>::create(*participant_, *hub_state_topic_);
-      ASSERT_TRUE(reader) << reader.error().message;
-      hub_reader_.emplace(std::move(*reader));
+      ASSERT_NO_FATAL_FAILURE(hub_.make_writer(hub_writer_, "/rsp_ecu/command"));
+      ASSERT_NO_FATAL_FAILURE(hub_.make_stream(hub_states_, "/rsp_ecu/state"));
     }
-
-    auto signals_topic =
-        dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(*participant_, sim::sim_signals_topic("rsp_ecu"));
-    ASSERT_TRUE(signals_topic) << signals_topic.error().message;
-    signals_topic_.emplace(std::move(*signals_topic));
-    auto signals_reader = dds::Reader<hub_msgs_msg_dds__SimSignals_>::create(*participant_, *signals_topic_);
-    ASSERT_TRUE(signals_reader) << signals_reader.error().message;
-    signals_reader_.emplace(std::move(*signals_reader));
-    auto input_topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(*participant_, sim::kSimInputTopic);
-    ASSERT_TRUE(input_topic) << input_topic.error().message;
-    sim_input_topic_.emplace(std::move(*input_topic));
-    auto input_writer = dds::Writer<hub_msgs_msg_dds__SimInput_>::create(*participant_, *sim_input_topic_);
-    ASSERT_TRUE(input_writer) << input_writer.error().message;
-    sim_input_writer_.emplace(std::move(*input_writer));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(signals_, sim::sim_signals_topic("rsp_ecu")));
+    // The shipped configuration, in the hub layout for that case.
+    const std::string hub = GetParam() == Layout::kHub ? hub_.hub_file("rsp_ecu", "hub") : "rsp_ecu";
+    ASSERT_NO_FATAL_FAILURE(hub_.start({.hub = hub}));
+    hub_.plan([this] { plan_once(); });
   }
 
   // The planner and the Dock ECU, every 50 ms: the wanted command (once one is set) and the
   // dock's State (while it is alive).
-  void plan() {
-    while (running_) {
-      if (dock_alive_) publish_dock();
-      std::string action;
-      std::string gripper;
-      {
-        const std::lock_guard lock(mutex_);
-        action = action_;
-        gripper = gripper_;
-      }
-      if (!action.empty()) publish_command(action, gripper);
-      std::this_thread::sleep_for(milliseconds(50));
+  void plan_once() {
+    if (dock_alive_) publish_dock();
+    std::string action;
+    std::string gripper;
+    {
+      const std::lock_guard lock(mutex_);
+      action = action_;
+      gripper = gripper_;
     }
+    if (!action.empty()) publish_command(action, gripper);
   }
   void publish_dock() {
     std::array<hub_msgs_msg_dds__DockSlot_, 3> slots{
@@ -244,91 +154,54 @@ class HubdRspTest : public ::testing::TestWithParam<Layout> {
     gripper_ = std::move(gripper);
   }
 
-  void set_world(const char* signal, bool active) {
-    hub_msgs_msg_dds__SimInput_ input{};
-    input.hub = wire("rsp_ecu");
-    input.signal = wire(signal);
-    input.active = active;
-    ASSERT_TRUE(sim_input_writer_->write(input).is_ok());
-  }
+  void set_world(const char* signal, bool active) { hub_.sim_input("rsp_ecu", signal, active); }
 
   // Takes States until one satisfies `predicate`; false after the patience runs out. last_ holds
   // the last State seen, for messages.
   bool wait_for(const std::function<bool(const Seen&)>& predicate) {
-    const auto deadline = std::chrono::steady_clock::now() + kPatience;
-    while (std::chrono::steady_clock::now() < deadline) {
-      std::optional<Seen> seen = take();
-      if (!seen) {
-        std::this_thread::sleep_for(milliseconds(2));
-        continue;
-      }
-      last_ = std::move(*seen);
-      if (predicate(last_)) return true;
-    }
-    return false;
-  }
-  std::optional<Seen> take() {
-    if (node_reader_) {
-      const Result<bool> taken = node_reader_->take_next(node_state_);
-      if (!taken.is_ok() || !taken.value()) return std::nullopt;
-      return seen_from(node_state_.get());
-    }
-    const Result<bool> taken = hub_reader_->take_next(hub_state_);
-    if (!taken.is_ok() || !taken.value()) return std::nullopt;
-    EXPECT_STREQ(hub_state_.get().rsp.name, "rsp") << "the collector fills the node's field";
-    return seen_from(hub_state_.get().rsp);
+    const auto take = [&](const auto& state) {
+      last_ = seen_from(state);
+      return predicate(last_);
+    };
+    if (node_states_) return node_states_->take_until(take, kPatience);
+    return hub_states_->take_until(
+        [&](const RspEcuTypes::State::Wire& s) {
+          EXPECT_STREQ(s.rsp.name, "rsp") << "the collector fills the node's field";
+          return take(s.rsp);
+        },
+        kPatience);
   }
 
   // Waits until the simulated lock actuator is in the given end position (energised = open).
   bool wait_for_lock_actuator(bool open) {
-    const auto deadline = std::chrono::steady_clock::now() + kPatience;
-    while (std::chrono::steady_clock::now() < deadline) {
-      const Result<bool> taken = signals_reader_->take_next(signals_);
-      if (!taken.is_ok() || !taken.value()) {
-        std::this_thread::sleep_for(milliseconds(2));
-        continue;
-      }
-      const auto& valves = signals_.get().valves;
-      for (std::uint32_t i = 0; i < valves._length; ++i) {
-        if (text(valves._buffer[i].name) == "rsp.lock_valve" && valves._buffer[i].energised == open)
-          return true;
-      }
-    }
-    return false;
+    return signals_->take_until(
+        [open](const hub_msgs_msg_dds__SimSignals_& signals) {
+          const auto& valves = signals.valves;
+          for (std::uint32_t i = 0; i < valves._length; ++i) {
+            if (text(valves._buffer[i].name) == "rsp.lock_valve" && valves._buffer[i].energised == open)
+              return true;
+          }
+          return false;
+        },
+        kPatience);
   }
 
-  std::string context() { return last_.describe() + "\n" + hub_->output(); }
+  std::string context() { return last_.describe() + "\n" + hub_.output(); }
 
-  std::optional<test_support::TestDomain> domain_;
-  fs::path hub_file_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<DockState>> dock_topic_;
-  std::optional<dds::Writer<DockState>> dock_writer_;
-  std::optional<dds::Topic<RspCommand>> node_command_topic_;
-  std::optional<dds::Writer<RspCommand>> node_writer_;
-  std::optional<dds::Topic<RspState>> node_state_topic_;
-  std::optional<dds::Reader<RspState>> node_reader_;
-  dds::Sample<RspState> node_state_;
-  std::optional<dds::Topic<RspEcuTypes::Command::Wire>> hub_command_topic_;
-  std::optional<dds::Writer<RspEcuTypes::Command::Wire>> hub_writer_;
-  std::optional<dds::Topic<RspEcuTypes::State::Wire>> hub_state_topic_;
-  std::optional<dds::Reader<RspEcuTypes::State::Wire>> hub_reader_;
-  dds::Sample<RspEcuTypes::State::Wire> hub_state_;
-  std::optional<dds::Topic<hub_msgs_msg_dds__SimSignals_>> signals_topic_;
-  std::optional<dds::Reader<hub_msgs_msg_dds__SimSignals_>> signals_reader_;
-  dds::Sample<hub_msgs_msg_dds__SimSignals_> signals_;
-  std::optional<dds::Topic<hub_msgs_msg_dds__SimInput_>> sim_input_topic_;
-  std::optional<dds::Writer<hub_msgs_msg_dds__SimInput_>> sim_input_writer_;
-  std::optional<HubProcess> hub_;
+  dds::Writer<DockState>* dock_writer_ = nullptr;
+  dds::Writer<RspCommand>* node_writer_ = nullptr;
+  StateStream<RspState>* node_states_ = nullptr;
+  dds::Writer<RspEcuTypes::Command::Wire>* hub_writer_ = nullptr;
+  StateStream<RspEcuTypes::State::Wire>* hub_states_ = nullptr;
+  StateStream<hub_msgs_msg_dds__SimSignals_>* signals_ = nullptr;
 
   std::mutex mutex_;
   std::string action_;   // guarded by mutex_
   std::string gripper_;  // guarded by mutex_
   std::atomic<bool> dock_alive_{true};
   std::atomic<bool> smart_tool_home_{false};
-  std::atomic<bool> running_{true};
-  std::thread planner_;
   Seen last_;
+  HubUnderTest hub_{kPatience};
 };
 
 TEST_P(HubdRspTest, UnlocksOnlyWithTheDocksConfirmationAndClosesWhenTheDockGoesQuiet) {

@@ -8,9 +8,12 @@
 
 #include <gtest/gtest.h>
 
-#include "hub_process.h"
+#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
+using test_support::Finished;
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 namespace {
 
 using std::chrono::seconds;
@@ -21,7 +24,7 @@ constexpr const char* kBrokenDdsConfig = "<CycloneDDS><Domain><General><Nonsense
 Finished run_without_dds(const std::vector<std::string>& args) {
   const test_support::Environment env{{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR},
                                       {"CYCLONEDDS_URI", kBrokenDdsConfig}};
-  auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  auto child = test_support::ChildProcess::start(test_support::hubd_path(), args, env);
   EXPECT_TRUE(child) << child.error().message;
   if (!child) return {};
   auto status = child->wait(seconds(60));  // an ASan hubd on a busy machine: seconds

@@ -17,14 +17,14 @@
 #include <sstream>
 #include <thread>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
-#include "hubrt/sim/sim_bridge_stage.h"
+#include "hubrt/test_support/hub_under_test.h"
 
-#include "hub_process.h"
 #include "hubd_tool_links.h"
 #include "rsp.h"
 
@@ -35,6 +35,7 @@ namespace hubrt::integration::tool_test {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
+using test_support::HubUnderTest;
 using RspState = hub_msgs_msg_dds__RspState_;
 
 // Generous: a busy 2-core machine running sanitizer builds in parallel. These tests check
@@ -46,92 +47,44 @@ enum class Layout { kNodeType, kHub };
 class HubdToolTest : public ::testing::TestWithParam<Layout> {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
+    ASSERT_NO_FATAL_FAILURE(hub_.open());
     if (GetParam() == Layout::kHub) {
-      link_ = std::make_unique<HubLink>(*participant_);
+      link_ = std::make_unique<HubLink>(hub_.participant());
     } else {
-      link_ = std::make_unique<NodeTypeLink>(*participant_);
+      link_ = std::make_unique<NodeTypeLink>(hub_.participant());
     }
-    rsp_topic_.emplace(*dds::Topic<RspState>::create(*participant_, "/rsp_ecu/rsp/state"));
-    rsp_writer_.emplace(*dds::Writer<RspState>::create(*participant_, *rsp_topic_));
-    sim_input_topic_.emplace(
-        *dds::Topic<hub_msgs_msg_dds__SimInput_>::create(*participant_, sim::kSimInputTopic));
-    sim_input_writer_.emplace(
-        *dds::Writer<hub_msgs_msg_dds__SimInput_>::create(*participant_, *sim_input_topic_));
-    sim_fault_topic_.emplace(
-        *dds::Topic<hub_msgs_msg_dds__SimFault_>::create(*participant_, sim::kSimFaultTopic));
-    sim_fault_writer_.emplace(
-        *dds::Writer<hub_msgs_msg_dds__SimFault_>::create(*participant_, *sim_fault_topic_));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(rsp_writer_, "/rsp_ecu/rsp/state"));
   }
 
+  // The planner first (it writes through the link), then the link's endpoints, before hub_'s
+  // participant goes.
   void TearDown() override {
-    running_ = false;
-    if (planner_.joinable()) planner_.join();
-    if (rsp_.joinable()) rsp_.join();
-    if (!hub_file_dir_.empty()) std::filesystem::remove_all(hub_file_dir_);
+    hub_.stop_planner();
+    link_.reset();
   }
 
-  // The shipped hub file, or (hub layout) a copy of it with `layout: hub`.
-  std::string hub_argument() {
-    if (GetParam() == Layout::kNodeType) return "tool_ecu";
-    std::ifstream in(std::string(HUBRT_SOURCE_DIR) + "/hubs/tool_ecu/tool_ecu.yaml");
-    std::stringstream yaml;
-    yaml << in.rdbuf();
-    std::string content = yaml.str();
-    const std::string from = "layout: node_type";
-    const auto at = content.find(from);
-    EXPECT_NE(at, std::string::npos);
-    content.replace(at, from.size(), "layout: hub");
-    hub_file_dir_ = (std::filesystem::temp_directory_path() /
-                     fmt::format("hubrt-tool-test-{}-{}", getpid(), domain_->domain_id()))
-                        .string();
-    std::filesystem::create_directories(hub_file_dir_);
-    const std::string path = hub_file_dir_ + "/tool_ecu.yaml";
-    std::ofstream(path) << content;
-    return path;
-  }
-
-  // Starts hubd, the planner (commands every 100 ms) and the stand-in RSP ECU (State every 100 ms).
+  // Starts hubd (the shipped hub file, or in the hub layout a copy of it with `layout: hub`), the
+  // planner (commands every 100 ms) and the stand-in RSP ECU (State every 100 ms).
   void start() {
-    HubProcessOptions options;
-    options.hub = hub_argument();
-    auto hub = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(link_->wait_for_hub(kPatience)) << hub_->output();
-    ASSERT_TRUE(sim_input_writer_->wait_for_readers(1, kPatience));
-    ASSERT_TRUE(sim_fault_writer_->wait_for_readers(1, kPatience));
-    ASSERT_TRUE(rsp_writer_->wait_for_readers(1, kPatience)) << "the Tool ECU subscribes to the RSP State";
-    planner_ = std::thread([this] {
-      while (running_) {
-        {
-          const std::lock_guard lock(mutex_);
-          if (planning_) link_->send(tool_order_, lift_order_);
-        }
-        std::this_thread::sleep_for(milliseconds(100));
-      }
-    });
-    rsp_ = std::thread([this] {
+    const std::string hub = GetParam() == Layout::kHub ? hub_.hub_file("tool_ecu", "hub") : "tool_ecu";
+    // hubd matching the RSP State writer: the Tool ECU subscribes to the RSP State.
+    ASSERT_NO_FATAL_FAILURE(hub_.start({.hub = hub}));
+    ASSERT_TRUE(link_->wait_for_hub(kPatience)) << hub_.output();
+    hub_.plan([this] { tick(); }, milliseconds(100));
+  }
+
+  // One round of the planner and the RSP stand-in.
+  void tick() {
+    const std::lock_guard lock(mutex_);
+    if (planning_) link_->send(tool_order_, lift_order_);
+    if (rsp_alive_) {
       const std::string name = "rsp";
-      while (running_) {
-        {
-          const std::lock_guard lock(mutex_);
-          if (rsp_alive_) {
-            RspState state{};
-            hubrt::msgs::typed::assign(state.name, name);
-            hubrt::msgs::typed::assign(state.tool, robot_tool_);
-            state.locked = robot_tool_ != "none";
-            EXPECT_TRUE(rsp_writer_->write(state).is_ok());
-          }
-        }
-        std::this_thread::sleep_for(milliseconds(100));
-      }
-    });
+      RspState state{};
+      hubrt::msgs::typed::assign(state.name, name);
+      hubrt::msgs::typed::assign(state.tool, robot_tool_);
+      state.locked = robot_tool_ != "none";
+      EXPECT_TRUE(rsp_writer_->write(state).is_ok());
+    }
   }
 
   void order(ToolOrder tool, std::optional<LiftOrder> lift = std::nullopt) {
@@ -158,15 +111,9 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
     rsp_alive_ = alive;
   }
 
-  void sim_input(const std::string& signal, bool active) {
-    const std::string hub = "tool_ecu";
-    hub_msgs_msg_dds__SimInput_ input{wire(hub), wire(signal), active};
-    ASSERT_TRUE(sim_input_writer_->write(input).is_ok());
-  }
+  void sim_input(const std::string& signal, bool active) { hub_.sim_input("tool_ecu", signal, active); }
   void sim_fault(const std::string& device, const std::string& fault) {
-    const std::string hub = "tool_ecu";
-    hub_msgs_msg_dds__SimFault_ message{wire(hub), wire(device), wire(fault), 0};
-    ASSERT_TRUE(sim_fault_writer_->write(message).is_ok());
+    hub_.sim_fault("tool_ecu", device, fault);
   }
 
   // Takes States until `predicate` holds for the latest View; false after `timeout`. Between
@@ -198,7 +145,7 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
         "errors='{}'\nhubd:\n{}",
         view_.tool.output, view_.tool.activity, view_.tool.blocked_by, view_.tool.result_run_id,
         view_.tool.result_ok, view_.tool.result_reasons, view_.tool.errors, view_.lift.at, view_.lift.errors,
-        hub_ ? hub_->output() : "");
+        hub_.output());
   }
   // The arm leaves home (the simulation board starts it there) and the robot holds the tool.
   void make_ready() {
@@ -209,17 +156,8 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
     })) << describe();
   }
 
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
   std::unique_ptr<Link> link_;
-  std::optional<dds::Topic<RspState>> rsp_topic_;
-  std::optional<dds::Writer<RspState>> rsp_writer_;
-  std::optional<dds::Topic<hub_msgs_msg_dds__SimInput_>> sim_input_topic_;
-  std::optional<dds::Writer<hub_msgs_msg_dds__SimInput_>> sim_input_writer_;
-  std::optional<dds::Topic<hub_msgs_msg_dds__SimFault_>> sim_fault_topic_;
-  std::optional<dds::Writer<hub_msgs_msg_dds__SimFault_>> sim_fault_writer_;
-  std::optional<HubProcess> hub_;
-  std::string hub_file_dir_;
+  dds::Writer<RspState>* rsp_writer_ = nullptr;
   View view_;
 
   std::mutex mutex_;  // guards the orders and the RSP stand-in's State
@@ -228,8 +166,6 @@ class HubdToolTest : public ::testing::TestWithParam<Layout> {
   bool planning_ = false;
   std::string robot_tool_ = "none";
   bool rsp_alive_ = true;
-  std::atomic<bool> running_{true};
-  std::thread planner_;
-  std::thread rsp_;
+  HubUnderTest hub_{kPatience};
 };
 }  // namespace hubrt::integration::tool_test

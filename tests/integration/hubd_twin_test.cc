@@ -19,14 +19,13 @@
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::integration {
 namespace {
 
-namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using DiagnosticArray = diagnostic_msgs_msg_dds__DiagnosticArray_;
@@ -133,47 +132,22 @@ std::vector<std::string> diagnostics_messages(dds::Reader<DiagnosticArray>& read
 class HubdTwinTest : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
+    ASSERT_NO_FATAL_FAILURE(first_.open("test-observer"));
     // The shipped Dock ECU configuration in the layout under test.
-    std::ifstream in(std::string(HUBRT_SOURCE_DIR) + "/hubs/dock_ecu/dock_ecu.yaml");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto at = text.find("layout: node_type");
-    ASSERT_NE(at, std::string::npos);
-    text.replace(at, 17, std::string("layout: ") + GetParam());
-    hub_file_ = fs::temp_directory_path() / fmt::format("hubrt-twin-{}-{}.yaml", GetParam(), getpid());
-    std::ofstream(hub_file_) << text;
-
-    auto participant = dds::Participant::create(domain_->config(), "test-observer");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
+    hub_file_ = first_.hub_file("dock_ecu", GetParam());
     if (node_type_layout()) {
-      states_ = std::make_unique<TypedCollector<dock_ecu::DockState>>(*participant_, state_topic());
+      states_ = std::make_unique<TypedCollector<dock_ecu::DockState>>(first_.participant(), state_topic());
     } else {
-      states_ =
-          std::make_unique<TypedCollector<dock_ecu::DockEcuTypes::State::Wire>>(*participant_, state_topic());
+      states_ = std::make_unique<TypedCollector<dock_ecu::DockEcuTypes::State::Wire>>(first_.participant(),
+                                                                                      state_topic());
     }
-    auto diagnostics_topic = dds::Topic<DiagnosticArray>::create(*participant_, "/diagnostics");
-    ASSERT_TRUE(diagnostics_topic) << diagnostics_topic.error().message;
-    diagnostics_topic_.emplace(std::move(*diagnostics_topic));
-    auto diagnostics = dds::Reader<DiagnosticArray>::create(*participant_, *diagnostics_topic_);
-    ASSERT_TRUE(diagnostics) << diagnostics.error().message;
-    diagnostics_.emplace(std::move(*diagnostics));
-
-    HubProcessOptions options;
-    options.hub = hub_file_.string();
-    auto first = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(first) << first.error().message;
-    first_.emplace(std::move(*first));
+    ASSERT_NO_FATAL_FAILURE(first_.make_stream(diagnostics_, "/diagnostics"));
+    ASSERT_NO_FATAL_FAILURE(first_.start({.hub = hub_file_}));
     // The first hub's writer: the one whose States arrive before any twin exists.
-    ASSERT_TRUE(states_->wait_for([](const Seen&) { return true; })) << first_->output();
+    ASSERT_TRUE(states_->wait_for([](const Seen&) { return true; })) << first_.output();
     first_writer_ = states_->seen().front().writer;
   }
-  void TearDown() override {
-    states_.reset();
-    fs::remove(hub_file_);
-  }
+  void TearDown() override { states_.reset(); }
 
   [[nodiscard]] bool node_type_layout() const { return std::string_view(GetParam()) == "node_type"; }
   [[nodiscard]] std::string state_topic() const {
@@ -187,11 +161,11 @@ class HubdTwinTest : public ::testing::TestWithParam<const char*> {
     std::string output;
   };
   Second run_second(const std::vector<std::string>& extra_args) {
-    std::vector<std::string> args = {"--board", "host-sim", "--hub", hub_file_.string()};
+    std::vector<std::string> args = {"--board", "host-sim", "--hub", hub_file_};
     args.insert(args.end(), extra_args.begin(), extra_args.end());
-    test_support::Environment env = domain_->env();
+    test_support::Environment env = first_.domain().env();
     env.emplace_back("HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR);
-    auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+    auto child = test_support::ChildProcess::start(test_support::hubd_path(), args, env);
     EXPECT_TRUE(child) << child.error().message;
     if (!child) return {};
     Second second;
@@ -214,13 +188,10 @@ class HubdTwinTest : public ::testing::TestWithParam<const char*> {
     }
   }
 
-  std::optional<test_support::TestDomain> domain_;
-  fs::path hub_file_;
-  std::optional<dds::Participant> participant_;
+  test_support::StateStream<DiagnosticArray>* diagnostics_ = nullptr;
+  test_support::HubUnderTest first_{kPatience};  // the first hubd
+  std::string hub_file_;
   std::unique_ptr<StateCollector> states_;
-  std::optional<dds::Topic<DiagnosticArray>> diagnostics_topic_;
-  std::optional<dds::Reader<DiagnosticArray>> diagnostics_;
-  std::optional<HubProcess> first_;
   dds_instance_handle_t first_writer_ = 0;
 };
 
@@ -230,7 +201,7 @@ TEST_P(HubdTwinTest, ASecondHubWithTheSameNameRefusesToStartNamingTheFirst) {
   EXPECT_NE(
       second.output.find(fmt::format("twin: another hub already publishes the States of hub 'dock_ecu': {} "
                                      "from host {} pid {}",
-                                     state_topic(), host_name(), first_->process().pid())),
+                                     state_topic(), host_name(), first_.hub().process().pid())),
       std::string::npos)
       << second.output;
   EXPECT_NE(second.output.find("refusing to start (no device opened, no output touched)"), std::string::npos)
@@ -255,7 +226,7 @@ TEST_P(HubdTwinTest, ALaterTwinIsReportedByBothAndTheLaterOneGoesSafeAndExits) {
       second.output.find(fmt::format("twin: another hub publishes {} from host {} pid {} and started earlier "
                                      "than this one: this one is the later and stops; outputs driven to "
                                      "their safe state",
-                                     state_topic(), host_name(), first_->process().pid())),
+                                     state_topic(), host_name(), first_.hub().process().pid())),
       std::string::npos)
       << second.output;
 
@@ -272,26 +243,26 @@ TEST_P(HubdTwinTest, ALaterTwinIsReportedByBothAndTheLaterOneGoesSafeAndExits) {
   EXPECT_TRUE(states_->wait_for([&](const Seen& s) {
     return s.writer == first_writer_ &&
            (s.errors.find(present) != std::string::npos || s.errors.find(held) != std::string::npos);
-  })) << first_->output();
+  })) << first_.output();
   // ... and in /diagnostics, as the first error of its node and on the hub's own line.
   bool node_line = false;
   bool hub_line = false;
   const auto deadline = std::chrono::steady_clock::now() + kPatience;
   while (!(node_line && hub_line) && std::chrono::steady_clock::now() < deadline) {
-    for (const std::string& line : diagnostics_messages(*diagnostics_)) {
+    for (const std::string& line : diagnostics_messages(diagnostics_->reader())) {
       const bool reports = line.find(present) != std::string::npos || line.find(held) != std::string::npos;
       node_line |= reports && line.starts_with("dock_ecu: dock: ");
       hub_line |= reports && line.starts_with("dock_ecu: cycle: ");
     }
     std::this_thread::sleep_for(milliseconds(50));
   }
-  EXPECT_TRUE(node_line) << first_->output();
-  EXPECT_TRUE(hub_line) << first_->output();
+  EXPECT_TRUE(node_line) << first_.output();
+  EXPECT_TRUE(hub_line) << first_.output();
 
   // The first hub keeps running: its heartbeat goes on, from the same writer, in sequence.
   const std::size_t before = states_->seen().size();
   EXPECT_TRUE(states_->wait_for([&](const Seen&) { return states_->seen().size() >= before + 3; }));
-  EXPECT_EQ(first_->output().find("stopping"), std::string::npos) << first_->output();
+  EXPECT_EQ(first_.output().find("stopping"), std::string::npos) << first_.output();
   expect_first_hub_stream_intact();
 }
 

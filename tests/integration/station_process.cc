@@ -141,7 +141,7 @@ Expected<StationProcesses> StationProcesses::start(const test_support::TestDomai
   for (const auto& [hub, file] : files) {
     std::vector<std::string> args = {"--board", hub->board, "--hub", file};
     args.insert(args.end(), options.hubd_args.begin(), options.hubd_args.end());
-    auto child = test_support::ChildProcess::start(HUBRT_HUBD_PATH, secured(args, hub->name), env);
+    auto child = test_support::ChildProcess::start(test_support::hubd_path(), secured(args, hub->name), env);
     if (!child) return std::move(child).error();
     starting.emplace_back(hub->name, std::move(*child));
   }

@@ -11,11 +11,11 @@
 
 #include "hubrt/base/status.h"
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
 
-#include "hub_process.h"
-
 namespace hubrt::integration {
+using test_support::Finished;
 
 enum class StationLayout : std::uint8_t { kNodeType, kHub };
 

@@ -12,6 +12,8 @@
 #include "station_scenario.h"
 
 namespace hubrt::integration {
+using test_support::HubProcess;
+using test_support::HubProcessOptions;
 namespace {
 
 namespace fs = std::filesystem;

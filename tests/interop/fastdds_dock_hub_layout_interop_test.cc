@@ -12,8 +12,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "hubrt/test_support/hub_process.h"
+
 #include "fastdds_dock_planner.h"
-#include "hub_process.h"
 
 namespace hubrt::interop {
 namespace {
@@ -56,9 +57,9 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
                                                  DockEcuHubTypes::kStateTopic);
     ASSERT_TRUE(planner) << planner.error().message;
     planner_ = std::move(*planner);
-    integration::HubProcessOptions options;
+    test_support::HubProcessOptions options;
     options.hub = hub_file_.string();
-    auto hub = integration::HubProcess::start(*domain_, options);
+    auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
     ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
@@ -77,7 +78,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
   std::optional<test_support::TestDomain> domain_;
   fs::path hub_file_;
   std::unique_ptr<FastDdsDockEcuPlanner> planner_;
-  std::optional<integration::HubProcess> hub_;
+  std::optional<test_support::HubProcess> hub_;
 };
 
 TEST_F(FastDdsDockHubLayoutInteropTest, TheHubCommandReachesTheNodeAndTheHubStateCarriesItsState) {

@@ -1,6 +1,6 @@
 // A ROS 2-vendor planner against hubd: eProsima Fast DDS (ROS 2's default RMW) with type support
-// generated from ros2/hub_msgs/msg/*.msg discovers a Dock ECU hubd (Cyclone DDS) over loopback,
-// reads its States and commands it (issue 13 point 3; docs/interop.md).
+// generated from the .msg files of ros2/hub_msgs discovers a Dock ECU hubd (Cyclone DDS) over
+// loopback, reads its States and commands it (issue 13 point 3; docs/interop.md).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -9,8 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "hubrt/test_support/hub_process.h"
+
 #include "fastdds_dock_planner.h"
-#include "hub_process.h"
 
 namespace hubrt::interop {
 namespace {
@@ -45,8 +46,8 @@ class FastDdsDockInteropTest : public ::testing::Test {
                                               DockNodeTypes::kStateTopic);
     ASSERT_TRUE(planner) << planner.error().message;
     planner_ = std::move(*planner);
-    integration::HubProcessOptions options;  // the Dock ECU on the host-sim board (fake HAL)
-    auto hub = integration::HubProcess::start(*domain_, options);
+    test_support::HubProcessOptions options;  // the Dock ECU on the host-sim board (fake HAL)
+    auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
     ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
@@ -63,7 +64,7 @@ class FastDdsDockInteropTest : public ::testing::Test {
 
   std::optional<test_support::TestDomain> domain_;
   std::unique_ptr<FastDdsDockPlanner> planner_;
-  std::optional<integration::HubProcess> hub_;
+  std::optional<test_support::HubProcess> hub_;
 };
 
 TEST_F(FastDdsDockInteropTest, ReadsTheHeartbeatAtTheConfiguredRateWithSequenceUpByOne) {

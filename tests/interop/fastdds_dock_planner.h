@@ -1,7 +1,7 @@
 // The Dock ECU's messages for a Fast DDS planner (fastdds_planner.h), in both layouts: the
 // node-type layout (DockCommand on /dock/command, DockState on /dock_ecu/dock/state) and the hub
 // layout (DockEcuCommand on /dock_ecu/command, DockEcuState on /dock_ecu/state). Types from
-// fastddsgen over ros2/hub_msgs/msg/*.msg.
+// fastddsgen over the .msg files of ros2/hub_msgs.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // A ROS 2-style planner written on Fast DDS: it writes one Command type and reads one State type
-// of a hub, with the types fastddsgen made from ros2/hub_msgs/msg/*.msg (nothing of hubrt's
+// of a hub, with the types fastddsgen made from the .msg files of ros2/hub_msgs (nothing of hubrt's
 // messages). `Types` names them: Command, State and their fastddsgen PubSubTypes
 // (DockNodeTypes, DockEcuHubTypes in fastdds_dock_planner.h).
 #pragma once

@@ -12,8 +12,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "hubrt/test_support/hub_process.h"
+
 #include "fastdds_dock_planner.h"
-#include "hub_process.h"
 
 namespace hubrt::interop {
 namespace {
@@ -99,9 +100,9 @@ class FastDdsSecureInteropTest : public ::testing::Test {
     // the domain's configuration may hold several sources, one of them for another domain id.
     const std::string xml = domain_->cyclone_xml() + ",<CycloneDDS><Domain id=\"any\">" +
                             cyclone_security_xml(pki_, "hub") + "</Domain></CycloneDDS>";
-    integration::HubProcessOptions options;
+    test_support::HubProcessOptions options;
     options.extra_env = {{"CYCLONEDDS_URI", xml}};
-    auto hub = integration::HubProcess::start(*domain_, options);
+    auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
   }
@@ -109,7 +110,7 @@ class FastDdsSecureInteropTest : public ::testing::Test {
   std::optional<test_support::TestDomain> domain_;
   fs::path pki_;
   std::unique_ptr<FastDdsDockPlanner> planner_;
-  std::optional<integration::HubProcess> hub_;
+  std::optional<test_support::HubProcess> hub_;
 };
 
 TEST_F(FastDdsSecureInteropTest, AnAuthenticatedFastDdsPlannerReadsAndCommandsASecuredHub) {

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Publishes DockStates on /dock_ecu/dock/state at 10 Hz the way a ROS 1 team's node would, with
-message classes built from --msg-dir (a copy of tests/ros1/msg another team may have changed) and
+message classes built from --msg-dir (a copy of the tier's ROS 1 .msg files another team may have
+changed) and
 the node name given by --name (over its bound to test that the bridge drops it)."""
 import argparse
 import os

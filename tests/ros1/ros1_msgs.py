@@ -1,7 +1,8 @@
 """ROS 1 message classes for the hub types, built the way rosbag builds classes it has no code
-for: genmsg reads the ROS 1 .msg files (tests/ros1/msg, written by `hubbridge --write-ros1-msgs`
-from ros2/hub_msgs) and computes the full definition and md5sum, genpy.dynamic makes the class.
-So the md5sum this side announces is genmsg's own, computed independently of hubbridge."""
+for: genmsg reads the ROS 1 .msg files (HUBRT_ROS1_MSG_DIR: written into the build tree by
+`hubbridge --write-ros1-msgs` from the hub types' .msg when the tier starts, ros1_tier.py) and
+computes the full definition and md5sum, genpy.dynamic makes the class. So the md5sum this side
+announces is genmsg's own, computed independently of hubbridge."""
 import os
 
 import genmsg
@@ -9,7 +10,8 @@ import genmsg.gentools
 import genmsg.msg_loader
 import genpy.dynamic
 
-MSG_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "msg")
+# Set by ros1_tier.py for itself and every process it starts.
+MSG_DIR = os.environ.get("HUBRT_ROS1_MSG_DIR", "")
 
 
 def _context(msg_dir):
@@ -35,6 +37,8 @@ if __name__ == "__main__":
     # `ros1_msgs.py [DIR]`: "type md5sum" for every message in DIR, to compare with hubbridge's.
     import sys
     directory = sys.argv[1] if len(sys.argv) > 1 else MSG_DIR
+    if not directory:
+        sys.exit("ros1_msgs.py: give the ROS 1 .msg directory (or set HUBRT_ROS1_MSG_DIR)")
     for pkg in sorted(os.listdir(directory)):
         for name in sorted(os.listdir(os.path.join(directory, pkg, "msg"))):
             type_name = "%s/%s" % (pkg, name[:-4])

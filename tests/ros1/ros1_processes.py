@@ -124,11 +124,12 @@ class Processes:
         return self.start(key, [self.program("firmware/hubbridge/hubbridge"), file] + self.domain.args())
 
     def bridge_file_with(self, file="tests/ros1/dock_bridge.yaml", **keys):
-        """A copy of bridge `file` with top-level `keys` set (msg_dir made absolute)."""
+        """A copy of bridge `file` with top-level `keys` set (a msg_dir it names made absolute)."""
         import yaml
         with open(os.path.join(SOURCE, file)) as f:
             root = yaml.safe_load(f)
-        root["msg_dir"] = os.path.normpath(os.path.join(SOURCE, os.path.dirname(file), root["msg_dir"]))
+        if "msg_dir" in root:
+            root["msg_dir"] = os.path.normpath(os.path.join(SOURCE, os.path.dirname(file), root["msg_dir"]))
         root.update(keys)
         path = os.path.join(self.dir, "bridge.yaml")
         with open(path, "w") as f:

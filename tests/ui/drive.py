@@ -14,91 +14,23 @@ python3's standard library only (urllib, json): no pip. Exit status 0 passed, 1 
 """
 import argparse
 import base64
-import fcntl
 import json
 import os
 import shutil
-import signal
-import socket
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.error
 import urllib.request
 
-PATIENCE_S = 30  # a loaded 2-core machine running sanitizer builds: behaviour, not timing
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from tier import PATIENCE_S, Failed, Processes, acquire_domain, free_port  # noqa: E402
+
 ELEMENT = "element-6066-11e4-a52e-4f735466cecf"  # W3C WebDriver's element reference key
-
-
-class Failed(Exception):
-    pass
 
 
 def log(message):
     print(f"ui-test: {message}", flush=True)
-
-
-def acquire_domain():
-    """A DDS domain id no other test uses: the lock files of tests/support TestDomain (ids 100..230)."""
-    first, last = 100, 230
-    count = last - first + 1
-    for i in range(count):
-        domain = first + (os.getpid() + i) % count
-        path = os.path.join(tempfile.gettempdir(), f"hubrt-test-domain-{domain}.lock")
-        fd = os.open(path, os.O_RDONLY | os.O_CREAT | os.O_CLOEXEC, 0o666)
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            return domain, fd
-        except OSError:
-            os.close(fd)
-    raise Failed("no free test DDS domain id")
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Processes:
-    """Every program this run started, ended by PID (SIGTERM, then SIGKILL) at the end."""
-
-    def __init__(self, out_dir):
-        self.out_dir = out_dir
-        self.children = []
-
-    def start(self, name, args, env=None):
-        output = open(os.path.join(self.out_dir, f"{name}.log"), "wb")
-        child = subprocess.Popen(args, stdout=output, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=env)
-        self.children.append((name, child, output))
-        return child
-
-    def log_text(self, name):
-        with open(os.path.join(self.out_dir, f"{name}.log"), "rb") as f:
-            return f.read().decode("utf-8", "replace")
-
-    def wait_for_log(self, name, needle, child):
-        deadline = time.monotonic() + PATIENCE_S
-        while time.monotonic() < deadline:
-            text = self.log_text(name)
-            if needle in text:
-                return text
-            if child.poll() is not None:
-                break
-            time.sleep(0.1)
-        raise Failed(f"{name} did not say '{needle}'; its output:\n{self.log_text(name)}")
-
-    def stop_all(self):
-        for name, child, output in reversed(self.children):
-            if child.poll() is None:
-                child.send_signal(signal.SIGTERM)
-                try:
-                    child.wait(10)
-                except subprocess.TimeoutExpired:
-                    child.kill()
-                    child.wait()
-            output.close()
 
 
 class WebDriver:

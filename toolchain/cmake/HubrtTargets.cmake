@@ -32,6 +32,24 @@ if(HUBRT_BOARD_LTO)
   add_link_options("$<IF:$<BOOL:$<TARGET_PROPERTY:HUBRT_LTO>>,-flto=auto,-fno-lto>")
 endif()
 
+# hubrt_linked_targets(<target> <out>): what <target> links, directly (its LINK_LIBRARIES, for a
+# target that is not an interface library) and through its interface (INTERFACE_LINK_LIBRARIES).
+function(hubrt_linked_targets target out)
+  set(links "")
+  get_target_property(type ${target} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    get_target_property(direct ${target} LINK_LIBRARIES)
+    if(direct)
+      list(APPEND links ${direct})
+    endif()
+  endif()
+  get_target_property(interface ${target} INTERFACE_LINK_LIBRARIES)
+  if(interface)
+    list(APPEND links ${interface})
+  endif()
+  set(${out} ${links} PARENT_SCOPE)
+endfunction()
+
 # hubrt_target_defaults(<target>): warnings (errors when HUBRT_WERROR) for our own code only.
 function(hubrt_target_defaults target)
   get_target_property(_type ${target} TYPE)
@@ -76,6 +94,40 @@ function(hubrt_add_library name)
   target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
   target_link_libraries(${name} PUBLIC ${A_PUBLIC_DEPS} PRIVATE ${A_PRIVATE_DEPS})
   hubrt_target_defaults(${name})
+  _hubrt_library_pch(${name} "${A_SOURCES}")
+endfunction()
+
+# HUBRT_PCH: hubrt's own libraries reuse one precompiled header of the third-party headers most of
+# them include (the standard library, fmt, spdlog, nlohmann-json, yaml-cpp, CLI11), built by the
+# library hubrt_library_pch (position-independent code, as every library; the test programs have
+# their own, hubrt_test_pch below). fmt and spdlog are precompiled in the mode Debian's shared
+# libraries are used in (their targets' definitions), so each library gets those definitions; the
+# other headers need none. C sources (Cyclone's instance map) are left out: a library with any is
+# compiled without the header.
+function(_hubrt_library_pch name sources)
+  if(NOT HUBRT_PCH OR NOT HUBRT_SHARED_LIBS)
+    return()
+  endif()
+  foreach(source IN LISTS sources)
+    if(source MATCHES "\\.c$")
+      return()
+    endif()
+  endforeach()
+  set(_definitions FMT_SHARED SPDLOG_SHARED_LIB SPDLOG_COMPILED_LIB SPDLOG_FMT_EXTERNAL)
+  if(NOT TARGET hubrt_library_pch)
+    set(_src ${CMAKE_BINARY_DIR}/hubrt_library_pch.cc)
+    file(WRITE ${_src} "// The host of the libraries' precompiled header (HUBRT_PCH).\n")
+    add_library(hubrt_library_pch SHARED ${_src})
+    target_compile_definitions(hubrt_library_pch PRIVATE ${_definitions})
+    target_precompile_headers(hubrt_library_pch PRIVATE
+      <algorithm> <array> <atomic> <chrono> <cstdint> <functional> <map> <memory> <mutex> <optional> <span>
+      <string> <string_view> <thread> <unordered_map> <variant> <vector>
+      <fmt/format.h> <spdlog/spdlog.h>)
+    target_compile_options(hubrt_library_pch PRIVATE $<$<CXX_COMPILER_ID:Clang>:-Xclang -fno-pch-timestamp>)
+    hubrt_target_defaults(hubrt_library_pch)
+  endif()
+  target_compile_definitions(${name} PRIVATE ${_definitions})
+  target_precompile_headers(${name} REUSE_FROM hubrt_library_pch)
 endfunction()
 
 # hubrt_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [TIMEOUT s])
@@ -106,6 +158,32 @@ function(hubrt_module_loader loader module define)
     target_compile_definitions(${loader} PRIVATE ${define}="$<TARGET_FILE:${module}>")
   endif()
   add_dependencies(${loader} ${module})
+endfunction()
+
+# HUBRT_PCH (the sanitizer presets): every test program reuses one precompiled header of the
+# heavy third-party headers they share (GoogleTest, GoogleMock, spdlog, fmt, nlohmann-json and the
+# standard library), built once by the program hubrt_test_pch. At -O0 with ASan a test object spends
+# about a quarter of its compile reading those headers (clang -ftime-trace, 2026-11-29), which a
+# precompiled header does once. clang accepts a precompiled header only where every macro it was
+# built with is defined alike on the command line, so each test links what the header was built
+# with (hubrt_test_pch_deps) and gets the same definitions; macros of a test's own are allowed.
+# The release and cross builds (GCC, no PCH) still compile every file on its own includes.
+function(_hubrt_test_pch)
+  if(TARGET hubrt_test_pch)
+    return()
+  endif()
+  add_library(hubrt_test_pch_deps INTERFACE)
+  target_link_libraries(hubrt_test_pch_deps INTERFACE GTest::gtest GTest::gmock hubrt_spdlog fmt::fmt
+                        nlohmann_json::nlohmann_json)
+  set(_src ${CMAKE_BINARY_DIR}/hubrt_test_pch_main.cc)
+  file(WRITE ${_src} "int main() { return 0; }\n")
+  add_executable(hubrt_test_pch ${_src})
+  target_link_libraries(hubrt_test_pch PRIVATE hubrt_test_pch_deps)
+  target_precompile_headers(hubrt_test_pch PRIVATE
+    <algorithm> <chrono> <functional> <map> <memory> <optional> <string> <string_view> <thread> <vector>
+    <gtest/gtest.h> <gmock/gmock.h> <fmt/format.h> <spdlog/spdlog.h>)
+  target_compile_options(hubrt_test_pch PRIVATE $<$<CXX_COMPILER_ID:Clang>:-Xclang -fno-pch-timestamp>)
+  hubrt_target_defaults(hubrt_test_pch)
 endfunction()
 
 function(hubrt_add_test name)
@@ -139,6 +217,11 @@ function(hubrt_add_test name)
   endif()
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} GTest::gtest GTest::gmock GTest::gtest_main)
+  if(HUBRT_PCH)
+    _hubrt_test_pch()
+    target_link_libraries(${name} PRIVATE hubrt_test_pch_deps)
+    target_precompile_headers(${name} REUSE_FROM hubrt_test_pch)
+  endif()
   # The ThreadSanitizer build runs only these: target `threaded-tests` (top-level CMakeLists.txt).
   if("threaded" IN_LIST A_LABELS)
     set_property(GLOBAL APPEND PROPERTY HUBRT_THREADED_TEST_TARGETS ${name})
@@ -150,12 +233,19 @@ function(hubrt_add_test name)
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
     TEST_LIST ${name}_TESTS)
-  set(_cross_env "")
+  # HUBRT_TEST_ENVIRONMENT (a list of NAME=value, set by the project: tests/new_hub) goes into every
+  # test's environment.
+  set(_env ${HUBRT_TEST_ENVIRONMENT})
   if(CMAKE_CROSSCOMPILING_EMULATOR)
     # Under qemu-user (no binfmt_misc) a test cannot exec a target program directly: tests that
     # start programs put this space-separated command in front of them.
     list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
-    set(_cross_env " ENVIRONMENT \"HUBRT_TARGET_EMULATOR=${_emulator}\"")
+    list(APPEND _env "HUBRT_TARGET_EMULATOR=${_emulator}")
+  endif()
+  set(_cross_env "")
+  if(_env)
+    list(JOIN _env ";" _env_text)
+    set(_cross_env " ENVIRONMENT \"${_env_text}\"")
   endif()
   set(_props ${CMAKE_CURRENT_BINARY_DIR}/${name}_properties.cmake)
   file(GENERATE OUTPUT ${_props} CONTENT

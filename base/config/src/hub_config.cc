@@ -81,6 +81,35 @@ Expected<std::optional<HubSecurity>> security(const YamlMap& root) {
   return std::optional<HubSecurity>(HubSecurity{folder, *identity});
 }
 
+// `clock_tolerance_ms`: a whole number of milliseconds, or `none` (the clocks are not synced).
+// Default 50 ms, as runtime::kDefaultClockTolerance (the reasoning is there). Below the command
+// timeout: a tolerance as long as the timeout would let a command from the future stay fresh for
+// two timeouts.
+Expected<std::optional<Duration>> clock_tolerance(const YamlMap& root, Duration command_timeout) {
+  constexpr std::int64_t kDefaultMs = 50;
+  constexpr std::int64_t kMaxMs = 1000;
+  if (!root.has("clock_tolerance_ms")) return std::optional<Duration>(std::chrono::milliseconds(kDefaultMs));
+  auto text = root.string("clock_tolerance_ms");
+  if (!text) return std::move(text).error();
+  if (*text == "none") return std::optional<Duration>();
+  auto ms = root.integer("clock_tolerance_ms", 0, kMaxMs);
+  if (!ms) {
+    return root.error_at("clock_tolerance_ms",
+                         fmt::format("'{}' is neither a whole number of milliseconds from 0 to {} nor 'none' "
+                                     "(the clocks are not synced)",
+                                     *text, kMaxMs));
+  }
+  const Duration tolerance = std::chrono::milliseconds(*ms);
+  if (tolerance >= command_timeout) {
+    return root.error_at(
+        "clock_tolerance_ms",
+        fmt::format("{} ms is not below the command timeout ({} ms): a command stamped that far in the "
+                    "future would stay fresh for two timeouts",
+                    *ms, std::chrono::duration_cast<std::chrono::milliseconds>(command_timeout).count()));
+  }
+  return std::optional<Duration>(tolerance);
+}
+
 }  // namespace
 
 bool is_ros_name_token(std::string_view name) noexcept {
@@ -94,9 +123,9 @@ bool is_ros_name_token(std::string_view name) noexcept {
 }
 
 Expected<HubConfig> parse_hub_config(const YamlMap& root) {
-  if (auto ok =
-          root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "immediate_state_interval_ms",
-                          "layout", "namespace", "diagnostics_hz", "nodes", "subscriptions", "security"});
+  if (auto ok = root.only_keys({"hub", "name", "rate_hz", "command_timeout_ms", "clock_tolerance_ms",
+                                "immediate_state_interval_ms", "layout", "namespace", "diagnostics_hz",
+                                "nodes", "subscriptions", "security"});
       !ok) {
     return std::move(ok).error();
   }
@@ -124,6 +153,10 @@ Expected<HubConfig> parse_hub_config(const YamlMap& root) {
                                      "jitter would trip the watchdog",
                                      *timeout, 2e3 / *rate, *rate));
   }
+
+  auto tolerance = clock_tolerance(root, config.command_timeout);
+  if (!tolerance) return std::move(tolerance).error();
+  config.clock_tolerance = *tolerance;
 
   // Default 10 ms, as runtime::kDefaultImmediateStateInterval (the reasoning is there); at most a
   // second: a longer window would hold a change back longer than any heartbeat period allowed.

@@ -106,9 +106,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   s.name.format("{}: cycle", hub_.options().name);
   const double period_ms = to_seconds(hub_.options().period) * 1e3;
   s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
-  // At most 21 values (kMaxValues is 24): 12 always, 9 more when every option is given and the
-  // process counts oversize samples and security refusals; the guard keeps a key added later from
-  // writing past the storage.
+  // At most 27 values (kMaxValues is 28): 14 always, 5 more when every option is given, 4 more when
+  // the process counts security refusals, 4 more in the hub layout; the guard keeps a key added
+  // later from writing past the storage.
   std::size_t n = 0;
   const auto add = [&](const char* key, auto value) {
     if (n == kMaxValues) return;
@@ -123,6 +123,8 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("period_ms", period_ms);
   add("rate_hz", 1e3 / period_ms);
   if (command_timeout_ > Duration::zero()) add("command_timeout_ms", to_seconds(command_timeout_) * 1e3);
+  // How far the clocks are trusted to agree (runtime/command_age.h): every node has the hub's.
+  add("clock_tolerance_ms", clock_tolerance_text());
   // The token bucket of immediate States (runtime/immediate_state_budget.h): refill period, size.
   if (immediate_state_interval_ > Duration::zero()) {
     add("immediate_state_interval_ms", to_seconds(immediate_state_interval_) * 1e3);
@@ -135,6 +137,8 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   add("states_deferred", hub_.states_deferred());
   add("last_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.last_cycle).count());
   add("max_cycle_us", std::chrono::duration_cast<std::chrono::microseconds>(stats.max_cycle).count());
+  // The longest the cycle was held past a deadline (stopped, paused, a step that blocked).
+  add("max_late_ms", std::chrono::duration_cast<std::chrono::milliseconds>(stats.longest_late).count());
   add("uptime_s", static_cast<std::int64_t>(to_seconds(now.mono - started_at_)));
   if (log_lines_dropped_ != nullptr)
     add("log_lines_dropped", log_lines_dropped_->load(std::memory_order_relaxed));
@@ -154,6 +158,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
     add("refused_writers", logged.writers);
     add("authentication_failures", logged.authentication);
   }
+  // The hub layout: the hub-level command's own intake (its stale commands never reach a node).
+  if (const runtime::NodeBase* hub_level = hub_.hub_level_node(); hub_level != nullptr)
+    add_command_counts(*hub_level, add);
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);
@@ -171,6 +178,18 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
     s.message.assign(hub_.alerts().at(0));
     wire_statuses_[0].level = level_of(runtime::Health::kError);
   }
+}
+
+std::string_view DiagnosticsStage::clock_tolerance_text() noexcept {
+  for (const auto& node : hub_.nodes()) {
+    const runtime::CommandAgeJudge* ages = node->command_ages();
+    if (ages == nullptr) continue;
+    if (!ages->tolerance()) return "none";
+    tolerance_text_.format("{}",
+                           std::chrono::duration_cast<std::chrono::milliseconds>(*ages->tolerance()).count());
+    return tolerance_text_.view();
+  }
+  return "none";
 }
 
 void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept {
@@ -194,7 +213,10 @@ void DiagnosticsStage::fill_node_status(std::size_t index, const runtime::NodeBa
   set_value(index, n++, "lifecycle_reason", s.lifecycle_reason.c_str());
   add("lifecycle_transitions", node.lifecycle().transitions());
   add("states_published", node.published());
-  add("commands_rejected", node.rejected());
+  // Rejected commands, commands too old to act or queued during a stall, and the clock offsets
+  // seen in the commands' source timestamps (hub wall clock minus stamp, latency included: the
+  // skew, when it is large).
+  add_command_counts(node, add);
   add("states_deferred", node.states_deferred());
   wire_statuses_[index].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[index].level = level_of(health);

@@ -19,6 +19,7 @@ constexpr std::string_view kDropPrefix = "dropping oversize (";
 std::atomic<std::uint64_t> g_dropped{0};
 std::atomic<bool> g_installed{false};
 std::atomic<bool> g_sink_installed{false};
+std::atomic<CycloneLogForward> g_forward{nullptr};
 
 // dds_log_write_fn_t. `data->message` is preceded by `data->hdrsize` bytes of header and
 // followed by a newline: what Cyclone's default sink (src/ddsrt/src/log.c, default_sink) writes.
@@ -32,13 +33,21 @@ void count_and_forward(void* /*arg*/, const dds_log_data_t* data) {
                                    data->function != nullptr ? data->function : "", message)) {
     return;
   }
-  (void)std::fwrite(data->message - data->hdrsize, 1, data->hdrsize + data->size + 1, stderr);
-  (void)std::fflush(stderr);
+  detail::write_log_line({data->message - data->hdrsize, data->hdrsize + data->size + 1});
 }
 
 }  // namespace
 
 namespace detail {
+
+void write_log_line(std::string_view line) noexcept {
+  if (const CycloneLogForward forward = g_forward.load(std::memory_order_acquire); forward != nullptr) {
+    forward(line);
+    return;
+  }
+  (void)std::fwrite(line.data(), 1, line.size(), stderr);
+  (void)std::fflush(stderr);
+}
 
 void install_process_log_sink() noexcept {
   if (g_sink_installed.exchange(true, std::memory_order_acq_rel)) return;
@@ -58,6 +67,10 @@ bool is_oversize_drop_message(std::string_view message) noexcept {
 void count_oversize_samples() noexcept {
   if (g_installed.exchange(true, std::memory_order_acq_rel)) return;
   detail::install_process_log_sink();
+}
+
+void forward_cyclone_log(CycloneLogForward forward) noexcept {
+  g_forward.store(forward, std::memory_order_release);
 }
 
 bool oversize_samples_counted() noexcept {

@@ -1,5 +1,7 @@
 #include "hubrt/dds/reader.h"
 
+#include <dds/ddsi/ddsi_serdata.h>
+
 #include "hubrt/dds/retcode.h"
 
 #include "matched_count.h"
@@ -48,6 +50,27 @@ Result<bool> UntypedReader::take_next(void* sample, SampleInfo* info) noexcept {
     if (n < 0) return to_status(n);
     if (n == 0) return false;
     if (!sample_info.valid_data) continue;
+    if (info != nullptr) {
+      info->source_time = WallTime{sample_info.source_timestamp};
+      info->publication_handle = sample_info.publication_handle;
+    }
+    return true;
+  }
+}
+
+Result<bool> UntypedReader::take_serialized(std::vector<std::uint8_t>& out, SampleInfo* info) {
+  for (;;) {
+    struct ddsi_serdata* serdata = nullptr;
+    dds_sample_info_t sample_info;
+    const dds_return_t n = dds_takecdr(handle_.get(), &serdata, 1, &sample_info, DDS_ANY_STATE);
+    if (n < 0) return to_status(n);
+    if (n == 0) return false;
+    // Ours now: one reference, whatever happens below.
+    const std::unique_ptr<ddsi_serdata, decltype(&ddsi_serdata_unref)> owned(serdata, &ddsi_serdata_unref);
+    if (!sample_info.valid_data || serdata == nullptr) continue;
+    const std::uint32_t size = ddsi_serdata_size(serdata);
+    out.resize(size);
+    ddsi_serdata_to_ser(serdata, 0, size, out.data());
     if (info != nullptr) {
       info->source_time = WallTime{sample_info.source_timestamp};
       info->publication_handle = sample_info.publication_handle;

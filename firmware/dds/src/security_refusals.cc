@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -141,7 +140,8 @@ std::size_t copy_printable(std::string_view text, char* out, std::size_t capacit
   return n;
 }
 
-// Writes "DDS Security refused <what>: <reason>" on stderr: the first of a kind at once, then at
+// Writes "DDS Security refused <what>: <reason>" where Cyclone's lines go (stderr, or hubd's log
+// queue: detail::write_log_line): the first of a kind at once, then at
 // most one per kLogEvery saying how many were held back. `s.mutex` must be held. No allocation
 // (Cyclone's threads, the hub's cycle).
 void write_limited(State& s, RefusedWhat what, std::string_view reason) noexcept {
@@ -166,8 +166,7 @@ void write_limited(State& s, RefusedWhat what, std::string_view reason) noexcept
                    .size,
                text.size() - 1);
   text[size] = '\n';
-  (void)std::fwrite(text.data(), 1, size + 1, stderr);
-  (void)std::fflush(stderr);
+  detail::write_log_line({text.data(), size + 1});
   limit.logged = true;
   limit.last = now;
   limit.suppressed = 0;

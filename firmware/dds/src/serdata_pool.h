@@ -51,6 +51,9 @@ class SerdataPool {
   // Blocks made so far (handed out or free); for tests and benchmarks.
   [[nodiscard]] std::size_t blocks() const noexcept;
 
+  // The writer's sertype (UntypedWriter::write_serialized makes serdata of it).
+  [[nodiscard]] const ddsi_sertype* sertype() const noexcept { return &sertype_->c; }
+
   // One serialised sample and its buffer (serdata_pool.cc); public for the ops' helpers only.
   struct Block;
 

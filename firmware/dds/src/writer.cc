@@ -89,6 +89,37 @@ Status UntypedWriter::write(const void* sample) noexcept {
   return to_status(rc);
 }
 
+Status UntypedWriter::write(const void* sample, WallTime source_time) noexcept {
+  if (source_time.ns_since_epoch < 0 || sample == nullptr) return to_status(DDS_RETCODE_BAD_PARAMETER);
+  if (pool_ == nullptr) return to_status(dds_write_ts(handle_.get(), sample, source_time.ns_since_epoch));
+  ddsi_serdata* serdata = pool_->serialize(sample);
+  if (serdata == nullptr) return to_status(DDS_RETCODE_BAD_PARAMETER);
+  // What dds_writecdr sets before dds_writecdr_impl, with our time in place of dds_time().
+  serdata->statusinfo = 0;
+  serdata->timestamp.v = source_time.ns_since_epoch;
+  const dds_return_t rc = dds_forwardcdr(handle_.get(), serdata);
+  if (rc == DDS_RETCODE_BAD_PARAMETER || rc == DDS_RETCODE_ALREADY_DELETED ||
+      rc == DDS_RETCODE_ILLEGAL_OPERATION) {
+    ddsi_serdata_unref(serdata);
+  }
+  return to_status(rc);
+}
+
+Status UntypedWriter::write_serialized(std::span<const std::uint8_t> serialized) noexcept {
+  if (pool_ == nullptr) return Status(ErrorCode::kFailedPrecondition);
+  ddsrt_iovec_t iov;
+  iov.iov_base = const_cast<std::uint8_t*>(serialized.data());  // read only (from_ser_iov copies)
+  iov.iov_len = static_cast<ddsrt_iov_len_t>(serialized.size());
+  ddsi_serdata* serdata = ddsi_serdata_from_ser_iov(pool_->sertype(), SDK_DATA, 1, &iov, serialized.size());
+  if (serdata == nullptr) return Status(ErrorCode::kInvalidArgument);
+  const dds_return_t rc = dds_writecdr(handle_.get(), serdata);
+  if (rc == DDS_RETCODE_BAD_PARAMETER || rc == DDS_RETCODE_ALREADY_DELETED ||
+      rc == DDS_RETCODE_ILLEGAL_OPERATION) {
+    ddsi_serdata_unref(serdata);  // as in write(): not consumed when the writer could not be locked
+  }
+  return to_status(rc);
+}
+
 std::size_t UntypedWriter::pooled_blocks() const noexcept {
   return pool_ == nullptr ? 0 : pool_->blocks();
 }

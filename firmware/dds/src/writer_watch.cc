@@ -225,6 +225,8 @@ void WriterWatch::refresh() noexcept {
           if (participant == self_ || e.topic_name == nullptr || !filter_(e.topic_name)) return;
           WatchedWriter writer;
           writer.topic_name = e.topic_name;
+          if (e.type_name != nullptr) writer.type_name = e.type_name;
+          writer.qos = read_offered_qos(e.qos);
           writer.key = Guid::from(e.key);
           writer.participant_key = participant;
           if (const auto it = processes.find(participant); it != processes.end()) {

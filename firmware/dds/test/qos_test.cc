@@ -87,5 +87,27 @@ TEST(Qos, CopiesAreDeepAndMovedFromStaysXcdr1) {
   EXPECT_EQ(read(copy.get()).depth, 2);
 }
 
+// What discovery reads of a writer's QoS makes the same QoS again (hubctl play offers what was
+// recorded), every policy a recording keeps.
+TEST(Qos, OfferedQosReadsBackWhatFromOfferedSets) {
+  OfferedQos offered;
+  offered.reliability = OfferedQos::Reliability::kBestEffort;
+  offered.durability = OfferedQos::Durability::kTransientLocal;
+  offered.history = OfferedQos::History::kKeepLast;
+  offered.depth = 42;
+  offered.deadline = std::chrono::milliseconds(250);
+  offered.lifespan = std::chrono::seconds(2);
+  offered.liveliness = OfferedQos::Liveliness::kManualByTopic;
+  offered.liveliness_lease = std::chrono::seconds(3);
+  EXPECT_EQ(read_offered_qos(Qos::from_offered(offered).get()), offered);
+  OfferedQos all;
+  all.history = OfferedQos::History::kKeepAll;
+  const OfferedQos read_all = read_offered_qos(Qos::from_offered(all).get());
+  EXPECT_EQ(read_all.history, OfferedQos::History::kKeepAll);
+  EXPECT_EQ(read_all.deadline, Duration::max());
+  EXPECT_EQ(read_all.reliability, OfferedQos::Reliability::kReliable);
+  EXPECT_EQ(read_offered_qos(Qos::ros2_default().get()).depth, 10);
+}
+
 }  // namespace
 }  // namespace hubrt::dds

@@ -56,7 +56,7 @@ TEST_F(DdsTest, WriterWatchReportsOtherParticipantsWritersOfWatchedTopicsWithThe
   ASSERT_TRUE(other_topic);
   std::optional<Writer<Ping>> other_writer;
   {
-    auto w = Writer<Ping>::create(*other, *other_topic);
+    auto w = Writer<Ping>::create(*other, *other_topic, Qos::sensor_data(7));
     ASSERT_TRUE(w);
     other_writer.emplace(std::move(*w));
   }
@@ -72,6 +72,13 @@ TEST_F(DdsTest, WriterWatchReportsOtherParticipantsWritersOfWatchedTopicsWithThe
   EXPECT_EQ(list[0].pid, std::to_string(getpid()));  // Cyclone's __Pid
   EXPECT_FALSE(list[0].process.empty());
   EXPECT_EQ(list[0].user_data, "hubrt.started_ns=5;");
+  // Its type and what it offers, as a recorder keeps them (rosbag2's offered_qos_profiles).
+  EXPECT_EQ(list[0].type_name, "hubrt_test::msg::dds_::Ping_");
+  EXPECT_EQ(list[0].qos.reliability, OfferedQos::Reliability::kBestEffort);
+  EXPECT_EQ(list[0].qos.durability, OfferedQos::Durability::kVolatile);
+  EXPECT_EQ(list[0].qos.history, OfferedQos::History::kKeepLast);
+  EXPECT_EQ(list[0].qos.depth, 7);
+  EXPECT_EQ(list[0].qos.deadline, Duration::max());
 
   // The writer goes: so does the entry.
   other_writer.reset();

@@ -59,7 +59,7 @@ Expected<BridgeFile> from_map(const Expected<config::YamlMap>& root, const std::
     return std::move(ok).error();
   BridgeFile file;
   auto name = root->string_or("name", "hubbridge");
-  auto msg_dir = root->string("msg_dir");
+  auto msg_dir = root->string_or("msg_dir", "");
   auto silent = root->integer_or("silent_after_ms", 2000, 10, 3600000);
   auto register_lost = root->boolean_or("register_lost_publishers", true);
   auto bridges = root->list_of_maps("bridges");
@@ -69,7 +69,9 @@ Expected<BridgeFile> from_map(const Expected<config::YamlMap>& root, const std::
   if (!silent) return std::move(silent).error();
   if (!bridges) return std::move(bridges).error();
   file.name = *name;
-  file.msg_dir = (std::filesystem::path(base_dir) / *msg_dir).lexically_normal().string();
+  if (!msg_dir->empty()) {
+    file.msg_dir = (std::filesystem::path(base_dir) / *msg_dir).lexically_normal().string();
+  }
   file.silent_after_s = static_cast<double>(*silent) / 1000.0;
   file.register_lost_publishers = *register_lost;
   // One writer per topic and direction: two bridges publishing one topic would be the duplicate

@@ -24,7 +24,8 @@ struct BridgeConfig {
 
 struct BridgeFile {
   std::string name;       // the hub it stands for: DDS participant name, ROS 1 node, /diagnostics prefix
-  std::string msg_dir;    // ROS 2 interface tree (contains hub_msgs/msg/*.msg), resolved
+  std::string msg_dir;    // ROS 2 interface tree (contains hub_msgs/msg/*.msg), resolved; empty:
+                          // the .msg texts built into hubbridge (hubrt/msgs/definitions.h)
   double silent_after_s;  // ros1_to_dds: no sample for this long -> "silent" on /diagnostics
   // After a rosmaster restart, register the ROS 1 nodes this bridge is connected to with the new
   // master on their behalf (master_sync.h); false: only hubbridge's own endpoints.
@@ -32,7 +33,7 @@ struct BridgeFile {
   std::vector<BridgeConfig> bridges;
 };
 
-// Reads the bridge file. `msg_dir` is resolved relative to the file. Errors name file:line and
+// Reads the bridge file. `msg_dir` (optional) is resolved relative to the file. Errors name file:line and
 // the key: unknown keys, a missing or repeated topic in one direction, invalid ROS names.
 Expected<BridgeFile> load_bridge_file(const std::string& path);
 

@@ -26,6 +26,15 @@ bridges:
   EXPECT_EQ(file->bridges[1].depth, 1);
 }
 
+// Without msg_dir the bridge takes the .msg texts built into it: the path stays empty.
+TEST(HubbridgeConfig, MsgDirIsOptional) {
+  auto file = load_bridge_text(
+      "bridges:\n  - {ros1_topic: /a, dds_topic: /a, type: hub_msgs/DockState, direction: ros1_to_dds}\n",
+      "b.yaml", "/x/y");
+  ASSERT_TRUE(file) << file.error().message;
+  EXPECT_EQ(file->msg_dir, "");
+}
+
 void expect_error(const std::string& text, const std::string& part) {
   auto file = load_bridge_text(text, "b.yaml", ".");
   ASSERT_FALSE(file) << text;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hubrt/msgs/definitions.h"
 #include "hubrt/ros1/codec.h"
 
 #include "dock_reflect.h"
@@ -15,7 +16,7 @@ namespace hubrt::hubbridge {
 namespace {
 
 ros1::Messages hub_messages() {
-  auto messages = ros1::load_ros2_tree_as_ros1(std::filesystem::path(HUBRT_SOURCE_DIR) / "ros2");
+  auto messages = ros1::load_definitions_as_ros1(msgs::msg_definitions());
   EXPECT_TRUE(messages) << messages.error().message;
   return messages ? *messages : ros1::Messages{};
 }

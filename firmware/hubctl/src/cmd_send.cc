@@ -3,6 +3,7 @@
 // samples are not repeated for ever, so each must reach every reader: send waits for the readers
 // first (--wait N of them, or until discovery settles) and, before it exits, for every reader to
 // acknowledge what it wrote.
+#include <chrono>
 #include <thread>
 
 #include <fmt/format.h>
@@ -13,6 +14,8 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
+#include "command_channel.h"
+#include "command_qos.h"
 #include "commands.h"
 #include "peer_authentication.h"
 #include "reader_wait.h"
@@ -32,7 +35,16 @@ struct SendOptions {
   bool once = false;
   std::uint32_t wait_readers = 0;  // 0: every reader discovery finds
   bool quiet = false;
+  std::uint32_t lifespan_ms = kDefaultCommandLifespanMs;
+  double stamp_offset_s = 0.0;  // test aid: source timestamps this far from this host's clock
 };
+
+// The source timestamp of a sample written now, `offset_s` away from this host's wall clock.
+WallTime stamp_now(double offset_s) {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  return WallTime{std::chrono::duration_cast<std::chrono::nanoseconds>(now).count() +
+                  static_cast<std::int64_t>(offset_s * 1e9)};
+}
 
 // Until stopped, a reader that matches late gets the next sample; a limited run must have its
 // readers before the first sample goes out, and waits for their acknowledgements at the end.
@@ -83,7 +95,7 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: {}\n", topic.error().message);
     return kExitFailed;
   }
-  auto writer = dds::UntypedWriter::create(*participant, *topic);
+  auto writer = dds::UntypedWriter::create(*participant, *topic, command_writer_qos(options.lifespan_ms));
   if (!writer) {
     fmt::print(stderr, "hubctl send: {}\n", writer.error().message);
     return kExitFailed;
@@ -120,7 +132,10 @@ int run_send(const SendOptions& options) {
   // Readers that finish with the sample (echo --count 1) leave before the end: count them now.
   const Result<std::uint32_t> matched = writer->matched_readers();
   while (!stop_requested() && (limit == 0 || sent < limit)) {
-    if (auto status = writer->write(sample.data()); !status.is_ok()) {
+    const Status status = options.stamp_offset_s == 0.0
+                              ? writer->write(sample.data())
+                              : writer->write(sample.data(), stamp_now(options.stamp_offset_s));
+    if (!status.is_ok()) {
       fmt::print(stderr, "hubctl send: write failed: {}\n", to_string(status.code()));
       return kExitFailed;
     }
@@ -172,6 +187,12 @@ void add_send_command(CLI::App& app, int& exit_code) {
                   "nothing sent if fewer match within --timeout")
       ->check(CLI::Range(1U, 1000U));
   cmd->add_flag("--quiet,-q", options->quiet, "Print nothing but errors");
+  add_lifespan_option(*cmd, options->lifespan_ms);
+  cmd->add_option("--stamp-offset", options->stamp_offset_s,
+                  "Test aid: stamp each sample's DDS source timestamp this many seconds away from this "
+                  "host's clock (-10: a planner whose clock is 10 s behind; 10: ahead), to see how a hub "
+                  "judges commands' ages (docs/safety.md)")
+      ->check(CLI::Range(-86400.0, 86400.0));
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_send(*options); });
 }

@@ -1,5 +1,6 @@
 // hubctl watch: every hub State on the domain in one live table — the operator's view of the
 // station. New hubs appear as they are discovered; a node that stops publishing turns "silent".
+// With --from FILE.mcap the same table is played from a recording, at its pace (--rate).
 #include <unistd.h>
 
 #include <set>
@@ -10,9 +11,11 @@
 #include "hubrt/msgs/json.h"
 
 #include "commands.h"
+#include "recording_source.h"
 #include "render.h"
 #include "sample_decoder.h"
 #include "session.h"
+#include "station_tap.h"
 #include "station_watch.h"
 
 namespace hubrt::hubctl {
@@ -21,8 +24,10 @@ namespace {
 struct WatchOptions {
   DomainOptions domain;
   double refresh_hz = 4.0;
-  double duration_s = 0;  // 0 = until stopped
-  bool plain = false;     // no screen redraw (logs, pipes)
+  double duration_s = 0;          // 0 = until stopped
+  bool plain = false;             // no screen redraw (logs, pipes)
+  std::vector<std::string> from;  // recordings to play instead of the domain
+  double rate = 1.0;              // their pace
 };
 
 // The node-specific part of a State in one line: every field after the common ones.
@@ -87,25 +92,51 @@ void draw(const std::map<std::string, WatchedState>& watched, bool plain,
 
 int run_watch(const WatchOptions& options) {
   install_stop_handler();
-  auto participant = join_domain(options.domain, "hubctl");
+  const bool live = options.from.empty();
+  auto participant = live ? join_domain(options.domain, "hubctl") : isolated_participant("hubctl");
   if (!participant) {
     fmt::print(stderr, "hubctl watch: {}\n", participant.error().message);
     return kExitUsage;
   }
-  StationWatch watch("hubctl watch");
+  // The source of States: the tap on the domain, or the recording.
+  std::unique_ptr<StationTap> tap;
+  std::unique_ptr<TapSource> source;
+  if (live) {
+    TapOptions tap_options;
+    tap_options.filter = &is_state_topic;
+    auto started = StationTap::start(*participant, std::move(tap_options));
+    if (!started) {
+      fmt::print(stderr, "hubctl watch: {}\n", started.error().message);
+      return kExitFailed;
+    }
+    tap = std::move(*started);
+    source = tap->subscribe(10'000);
+  } else {
+    auto opened = RecordingSource::open(options.from, RecordingOptions{options.rate, 0, {}, &is_state_topic});
+    if (!opened) {
+      fmt::print(stderr, "hubctl watch: {}\n", opened.error().message);
+      return kExitUsage;
+    }
+    source = std::move(*opened);
+  }
+  TapDecoder decoder("hubctl watch", *participant);
+  StationWatch watch;
   const auto start = std::chrono::steady_clock::now();
   auto next_draw = start;
   const auto refresh = seconds(1.0 / options.refresh_hz);
   while (!stop_requested()) {
     const auto now = std::chrono::steady_clock::now();
     if (options.duration_s > 0 && now - start >= seconds(options.duration_s)) break;
-    watch.poll(*participant, now);
-    if (now >= next_draw) {
+    watch.drain(*source, decoder);
+    const bool ended = source->finished();
+    if (now >= next_draw || ended) {
       next_draw = now + refresh;
       draw(watch.states(), options.plain, now);
     }
+    if (ended) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  if (!source->problem().empty()) fmt::print(stderr, "hubctl watch: {}\n", source->problem());
   return watch.states().empty() ? kExitFailed : kExitOk;
 }
 
@@ -118,6 +149,13 @@ void add_watch_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.1, 50.0));
   cmd->add_option("--duration", options->duration_s, "Stop after this many seconds (default: until Ctrl-C)");
   cmd->add_flag("--plain", options->plain, "Print tables one after another instead of redrawing the screen");
+  cmd->add_option("--from", options->from,
+                  "Play the States of a recording (hubctl record, a black box; the parts of a split one in "
+                  "order: --from a_0.mcap --from a_1.mcap) instead of the domain")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--rate", options->rate, "With --from: the pace, as a factor of the recorded one")
+      ->check(CLI::Range(0.01, 1000.0));
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] {
     WatchOptions effective = *options;

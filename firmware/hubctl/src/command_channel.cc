@@ -5,7 +5,20 @@
 #include "hubrt/msgs/json.h"
 #include "hubrt/msgs/set_field.h"
 
+#include "command_qos.h"
+
 namespace hubrt::hubctl {
+
+void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms) {
+  cmd.add_option(
+         "--lifespan-ms", lifespan_ms,
+         fmt::format("DDS LIFESPAN of the commands written, in ms (0: none; default {}, the hub file's "
+                     "default command_timeout_ms: set the hub's own, which /diagnostics publishes). "
+                     "Cyclone then drops a command that could no longer act instead of "
+                     "retransmitting or delivering it late (docs/interop.md)",
+                     kDefaultCommandLifespanMs))
+      ->check(CLI::Range(0U, 3'600'000U));
+}
 
 Expected<PreparedCommand> prepare_command(const msgs::TypeInfo& type, const std::string& target_type,
                                           const std::string& target_name, const FieldAssignments& fields,
@@ -36,7 +49,7 @@ Expected<CommandChannel> CommandChannel::open(const dds::Participant& participan
   }
   auto topic = dds::UntypedTopic::create(participant, *type.descriptor, ros_topic);
   if (!topic) return std::move(topic).error();
-  auto writer = dds::UntypedWriter::create(participant, *topic);
+  auto writer = dds::UntypedWriter::create(participant, *topic, command_writer_qos());
   if (!writer) return std::move(writer).error();
   return CommandChannel(std::move(*topic), std::move(*writer));
 }

@@ -4,18 +4,24 @@
 
 #include <string>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "hubrt/base/status.h"
 #include "hubrt/dds/participant.h"
+#include "hubrt/dds/qos.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/msgs/type_info.h"
 
+#include "command_qos.h"
 #include "conformance_profile.h"
 
 namespace hubrt::hubctl {
+
+// Adds --lifespan-ms (default kDefaultCommandLifespanMs) to a command that writes commands.
+void add_lifespan_option(CLI::App& cmd, std::uint32_t& lifespan_ms);
 
 struct PreparedCommand {
   std::string label;  // "probe 1", "reset", for messages

@@ -16,5 +16,7 @@ void add_play_command(CLI::App& app, int& exit_code);
 void add_net_config_command(CLI::App& app, int& exit_code);
 void add_security_command(CLI::App& app, int& exit_code);
 void add_serve_command(CLI::App& app, int& exit_code);
+void add_record_command(CLI::App& app, int& exit_code);
+void add_foxglove_command(CLI::App& app, int& exit_code);
 
 }  // namespace hubrt::hubctl

@@ -21,15 +21,4 @@ ConfirmDecision ConfirmGate::decide(const ConfirmRequest& request, const Operato
   return {200, "done: sent", id};
 }
 
-bool host_allowed(std::string_view host, std::string_view listen_address, std::uint16_t port) {
-  const bool loopback = listen_address == "127.0.0.1" || listen_address == "localhost" ||
-                        listen_address == "::1" || listen_address.starts_with("127.");
-  if (!loopback) return !host.empty();
-  for (const std::string& allowed :
-       {fmt::format("127.0.0.1:{}", port), fmt::format("localhost:{}", port), fmt::format("[::1]:{}", port),
-        fmt::format("{}:{}", listen_address, port)})
-    if (host == allowed) return true;
-  return false;
-}
-
 }  // namespace hubrt::hubctl::screen

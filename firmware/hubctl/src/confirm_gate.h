@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "listen_address.h"
 #include "screen_format.h"
 
 namespace hubrt::hubctl::screen {
@@ -50,9 +51,7 @@ class ConfirmGate {
   std::chrono::steady_clock::time_point last_press_{};
 };
 
-// A Host header the server answers: with a loopback listen address only "127.0.0.1:<port>",
-// "localhost:<port>" and "[::1]:<port>" (a DNS-rebinding page sends its own name); with any other
-// address, any host.
-bool host_allowed(std::string_view host, std::string_view listen_address, std::uint16_t port);
+// The Host headers the screen answers (listen_address.h).
+using hubctl::host_allowed;
 
 }  // namespace hubrt::hubctl::screen

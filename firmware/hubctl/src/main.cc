@@ -17,9 +17,11 @@ int main(int argc, char** argv) {
   hubrt::hubctl::add_watch_command(app, exit_code);
   hubrt::hubctl::add_conformance_command(app, exit_code);
   hubrt::hubctl::add_play_command(app, exit_code);
+  hubrt::hubctl::add_record_command(app, exit_code);
   hubrt::hubctl::add_net_config_command(app, exit_code);
   hubrt::hubctl::add_security_command(app, exit_code);
   hubrt::hubctl::add_serve_command(app, exit_code);
+  hubrt::hubctl::add_foxglove_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

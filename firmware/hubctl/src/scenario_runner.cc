@@ -17,7 +17,8 @@ class ScenarioRunner::Impl {
         options_(options),
         out_(out),
         traffic_(participant, options.discovery_timeout,
-                 seconds(1.0 / (options.rate_hz > 0 ? options.rate_hz : scenario.rate_hz))),
+                 seconds(1.0 / (options.rate_hz > 0 ? options.rate_hz : scenario.rate_hz)),
+                 options.command_lifespan_ms),
         steps_(traffic_) {}
 
   PlayOutcome run() {

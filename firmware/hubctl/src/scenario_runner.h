@@ -19,6 +19,7 @@ struct PlayOptions {
   Duration discovery_timeout = std::chrono::seconds(10);  // to find a hub, node or the station
   int rounds = 1;                                         // 0: until stopped (Ctrl-C)
   bool quiet = false;                                     // report failures and the summary only
+  std::uint32_t command_lifespan_ms = 1000;               // LIFESPAN of the commands (0: none)
 };
 
 enum class PlayOutcome : std::uint8_t {

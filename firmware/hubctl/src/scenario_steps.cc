@@ -152,7 +152,7 @@ StepResult StepExecutor::command(const Step& step) {
   const std::string key = endpoints->layout == Layout::kNodeType
                               ? fmt::format("{}/{}", step.target.hub, step.target.node)
                               : step.target.hub;
-  auto w = traffic_.writer(endpoints->command_topic, *endpoints->command_type);
+  auto w = traffic_.command_writer(endpoints->command_topic, *endpoints->command_type);
   if (!w) return failed(w.error().message);
   Plan& plan = traffic_.plans()[key];
   plan.hub = step.target.hub;

@@ -9,13 +9,18 @@
 #include "hubrt/dds/ros_names.h"
 #include "hubrt/msgs/all_types.h"
 
+#include "command_channel.h"
+#include "command_qos.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
 
 ScenarioTraffic::ScenarioTraffic(const dds::Participant& participant, Duration discovery_timeout,
-                                 Duration period)
-    : participant_(participant), discovery_timeout_(discovery_timeout), period_(period) {}
+                                 Duration period, std::uint32_t command_lifespan_ms)
+    : participant_(participant),
+      discovery_timeout_(discovery_timeout),
+      period_(period),
+      command_lifespan_ms_(command_lifespan_ms) {}
 
 // ---- the loop: samples in, due commands out -----------------------------------------------------
 
@@ -106,13 +111,22 @@ Expected<std::pair<StateChannel*, std::string>> ScenarioTraffic::state_of(const 
 
 Expected<WriterEntry*> ScenarioTraffic::writer(const std::string& topic, const msgs::TypeInfo& type,
                                                std::uint32_t readers) {
+  return writer_with(topic, type, readers, dds::Qos::ros2_default());
+}
+
+Expected<WriterEntry*> ScenarioTraffic::command_writer(const std::string& topic, const msgs::TypeInfo& type) {
+  return writer_with(topic, type, 1, command_writer_qos(command_lifespan_ms_));
+}
+
+Expected<WriterEntry*> ScenarioTraffic::writer_with(const std::string& topic, const msgs::TypeInfo& type,
+                                                    std::uint32_t readers, const dds::Qos& qos) {
   auto it = writers_.find(topic);
   if (it == writers_.end()) {
     auto entry = std::make_unique<WriterEntry>();
     auto t = dds::UntypedTopic::create(participant_, *type.descriptor, topic);
     if (!t) return std::move(t).error();
     entry->topic.emplace(std::move(*t));
-    auto w = dds::UntypedWriter::create(participant_, *entry->topic);
+    auto w = dds::UntypedWriter::create(participant_, *entry->topic, qos);
     if (!w) return std::move(w).error();
     entry->writer.emplace(std::move(*w));
     it = writers_.emplace(topic, std::move(entry)).first;

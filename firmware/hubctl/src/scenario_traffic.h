@@ -74,7 +74,9 @@ struct Plan {
 class ScenarioTraffic {
  public:
   // `participant` must outlive this. `period`: how often each plan is sent again.
-  ScenarioTraffic(const dds::Participant& participant, Duration discovery_timeout, Duration period);
+  // `command_lifespan_ms`: the LIFESPAN of command writers (command_writer(); 0: none).
+  ScenarioTraffic(const dds::Participant& participant, Duration discovery_timeout, Duration period,
+                  std::uint32_t command_lifespan_ms);
 
   // The rate's clock starts now: the first resend of a plan is due at once.
   void start() { next_send_ = SteadyClock::now(); }
@@ -97,18 +99,23 @@ class ScenarioTraffic {
   // timeout; a writer that is not matched yet would send into the void).
   Expected<WriterEntry*> writer(const std::string& topic, const msgs::TypeInfo& type,
                                 std::uint32_t readers = 1);
+  // As writer(), for a hub's command topic: the writer is created with the command LIFESPAN.
+  Expected<WriterEntry*> command_writer(const std::string& topic, const msgs::TypeInfo& type);
   // The number of remote readers of `ros_topic`, once the hub `hub` is among them.
   Expected<std::uint32_t> readers_including(std::string_view ros_topic, std::string_view hub);
   // The number of remote readers of `ros_topic` discovery knows now (no waiting).
   Expected<std::uint32_t> readers_now(std::string_view ros_topic);
 
  private:
+  Expected<WriterEntry*> writer_with(const std::string& topic, const msgs::TypeInfo& type,
+                                     std::uint32_t readers, const dds::Qos& qos);
   Expected<StateChannel*> channel(const std::string& topic, const msgs::TypeInfo& type);
   Expected<void> wait_for_readers(const WriterEntry& entry, std::uint32_t count);
 
   const dds::Participant& participant_;
   Duration discovery_timeout_;
   Duration period_;
+  std::uint32_t command_lifespan_ms_;
   SteadyClock::time_point next_send_{};
   std::map<std::string, NodeEndpoints> located_;
   std::map<std::string, std::unique_ptr<StateChannel>> states_;

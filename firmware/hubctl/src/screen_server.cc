@@ -19,8 +19,11 @@
 #include "hubrt/msgs/json.h"
 
 #include "confirm_gate.h"
+#include "listen_address.h"
 #include "screen_format.h"
+#include "station_tap.h"
 #include "station_watch.h"
+#include "tap_decoder.h"
 #include "web_assets.h"
 
 namespace hubrt::hubctl {
@@ -45,29 +48,6 @@ struct Shared {
   bool stopping = false;
 };
 
-struct Endpoint {
-  std::string address;
-  int port = 0;
-};
-
-Expected<Endpoint> parse_listen(const std::string& text) {
-  const auto colon = text.rfind(':');
-  if (colon == std::string::npos || colon == 0)
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--listen '{}': expected ADDR:PORT", text));
-  Endpoint e;
-  e.address = text.substr(0, colon);
-  if (e.address.size() > 2 && e.address.front() == '[' && e.address.back() == ']')
-    e.address = e.address.substr(1, e.address.size() - 2);
-  try {
-    std::size_t used = 0;
-    e.port = std::stoi(text.substr(colon + 1), &used);
-    if (used != text.size() - colon - 1 || e.port < 0 || e.port > 65535) throw std::out_of_range("port");
-  } catch (const std::exception&) {
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--listen '{}': bad port", text));
-  }
-  return e;
-}
-
 // The DDS side: discovery, the instruction, the confirm writer.
 class DdsSide {
  public:
@@ -75,6 +55,12 @@ class DdsSide {
     auto participant = join_domain(options.domain, "hubctl-serve");
     if (!participant) return participant.error();
     auto side = std::unique_ptr<DdsSide>(new DdsSide(std::move(*participant), options));
+    TapOptions tap_options;
+    tap_options.filter = &is_state_topic;
+    auto tap = StationTap::start(side->participant_, std::move(tap_options));
+    if (!tap) return tap.error();
+    side->tap_ = std::move(*tap);
+    side->states_ = side->tap_->subscribe(10'000);
     const auto& types = msgs::all_types();
     side->instruction_type_ = types.find_by_ros_name("hub_msgs/msg/OperatorInstruction");
     side->confirm_type_ = types.find_by_ros_name("hub_msgs/msg/OperatorConfirm");
@@ -99,8 +85,8 @@ class DdsSide {
   }
 
   // One pass: new States and instructions; true when the snapshot should be sent again.
-  bool poll(Clock::time_point now) {
-    bool changed = watch_.poll(participant_, now);
+  bool poll(Clock::time_point /*now*/) {
+    bool changed = watch_.drain(*states_, state_decoder_);
     while (true) {
       const Result<bool> taken = instruction_reader_->take_next(instruction_sample_->data());
       if (!taken.is_ok() || !taken.value()) break;
@@ -138,11 +124,14 @@ class DdsSide {
   DdsSide(dds::Participant participant, const ServeOptions& options)
       : participant_(std::move(participant)),
         operator_state_(options.operator_state),
-        watch_("hubctl serve"),
+        state_decoder_("hubctl serve", participant_),
         decoder_("hubctl serve", options.instruction_topic) {}
 
   dds::Participant participant_;
   std::string operator_state_;
+  std::unique_ptr<StationTap> tap_;  // every State, as they come; before the decoder, after the participant
+  std::unique_ptr<TapSubscription> states_;
+  TapDecoder state_decoder_;
   StationWatch watch_;
   SampleDecoder decoder_;
   const msgs::TypeInfo* instruction_type_ = nullptr;

@@ -1,22 +1,18 @@
-// Every hub State on the domain, discovered as hubs appear and judged fresh or silent: what
-// `hubctl watch` draws as a table and `hubctl serve` shows on the operator screen.
+// Every hub State the tap (tap.h) hands out, judged fresh or silent: what `hubctl watch` draws as a
+// table and `hubctl serve` shows on the operator screen, live or from a recording.
 #pragma once
 
 #include <chrono>
 #include <cstddef>
 #include <map>
-#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "hubrt/dds/participant.h"
-#include "hubrt/dds/reader.h"
-#include "hubrt/dds/sample.h"
-#include "hubrt/dds/topic.h"
 #include "hubrt/msgs/type_info.h"
 
-#include "sample_decoder.h"
+#include "tap.h"
+#include "tap_decoder.h"
 
 namespace hubrt::hubctl {
 
@@ -29,10 +25,6 @@ inline constexpr std::chrono::milliseconds kSilentAfter{2000};
 struct WatchedState {
   std::string topic;  // ROS name, e.g. "/dock/state"
   const msgs::TypeInfo* type = nullptr;
-  std::optional<dds::UntypedTopic> dds_topic;
-  std::optional<dds::UntypedReader> reader;
-  std::optional<dds::UntypedSample> sample;
-  std::optional<SampleDecoder> decoder;
   nlohmann::ordered_json last;  // the last State as JSON (valid UTF-8: SampleDecoder)
   std::chrono::steady_clock::time_point last_seen{};
   std::size_t received = 0;
@@ -42,24 +34,22 @@ struct WatchedState {
   }
 };
 
-// Not thread-safe: one thread polls it.
+// Not thread-safe: one thread feeds it.
 class StationWatch {
  public:
-  // `tool` prefixes the decoder's reports ("hubctl watch").
-  explicit StationWatch(std::string tool) : tool_(std::move(tool)) {}
+  // Takes one event of a tap: a State topic appearing adds a row, a State sample (decoded through
+  // `decoder`; one that cannot be shown is reported there and skipped) updates it, seen at `now`.
+  // Other topics are ignored. Returns true when the table changed.
+  bool on_event(const TapEvent& event, TapDecoder& decoder, std::chrono::steady_clock::time_point now);
 
-  // Discovers new State topics (every 0.5 s at most) and takes every new sample. Returns true
-  // when a State arrived or a topic was added.
-  bool poll(const dds::Participant& participant, std::chrono::steady_clock::time_point now);
+  // Every event `source` has now (without waiting), through on_event. Returns true when the table
+  // changed.
+  bool drain(TapSource& source, TapDecoder& decoder);
 
   [[nodiscard]] const std::map<std::string, WatchedState>& states() const noexcept { return watched_; }
 
  private:
-  void discover(const dds::Participant& participant, bool& changed);
-
-  std::string tool_;
   std::map<std::string, WatchedState> watched_;
-  std::chrono::steady_clock::time_point next_discovery_{};
 };
 
 }  // namespace hubrt::hubctl

@@ -8,6 +8,9 @@
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/spdlog.h>
 
+#include "hubrt/dds/oversize_samples.h"
+
+#include "log_queue.h"
 #include "stderr_sink.h"
 
 namespace hubrt::hubd {
@@ -30,7 +33,22 @@ class SyslogPriorityFlag final : public spdlog::custom_flag_formatter {
 
 std::atomic<std::uint64_t> g_log_lines_dropped{0};
 
+// The queue to stderr, for the process's life: never destroyed, because its writer thread may be
+// left blocked in write(2) at the end (finish_logging); reachable from here, so no leak checker
+// reports it.
+LogQueue* g_queue = nullptr;
+
+// Cyclone's own log lines (dds::count_oversize_samples forwards them) take the same queue, so
+// that a Cyclone thread that logs — or the cycle inside a Cyclone call — never waits for stderr.
+void forward_cyclone_line(std::string_view line) noexcept {
+  if (g_queue != nullptr) g_queue->push({line});
+}
+
 }  // namespace
+
+bool finish_logging(Duration timeout) noexcept {
+  return g_queue == nullptr || g_queue->finish(timeout);
+}
 
 const std::atomic<std::uint64_t>& log_lines_dropped() noexcept {
   return g_log_lines_dropped;
@@ -46,8 +64,9 @@ Expected<std::shared_ptr<spdlog::logger>> make_logger(const std::string& name, c
   const char* journal = std::getenv("JOURNAL_STREAM");  // NOLINT(concurrency-mt-unsafe): start-up only
   const bool to_journal = journal != nullptr && *journal != '\0';
   const bool colors = !to_journal && ::isatty(STDERR_FILENO) == 1;
-  auto logger =
-      std::make_shared<spdlog::logger>(name, std::make_shared<StderrSink>(colors, g_log_lines_dropped));
+  if (g_queue == nullptr) g_queue = new LogQueue(STDERR_FILENO, g_log_lines_dropped);  // NOLINT: see g_queue
+  dds::forward_cyclone_log(&forward_cyclone_line);
+  auto logger = std::make_shared<spdlog::logger>(name, std::make_shared<StderrSink>(colors, *g_queue));
   if (to_journal) {
     auto formatter = std::make_unique<spdlog::pattern_formatter>();
     formatter->add_flag<SyslogPriorityFlag>('*').set_pattern("%*%v");

@@ -344,5 +344,9 @@ int main(int argc, char** argv) {
     // command line": the table's 2, which the systemd unit does not restart. --help exits 0.
     return app.exit(e) == 0 ? hubrt::exit_codes::kOk : hubrt::exit_codes::kUsage;
   }
-  return hubrt::hubd::run(options);
+  const int status = hubrt::hubd::run(options);
+  // The last lines (the stop message) get a bounded time to reach stderr: a reader that stopped
+  // reading cannot hold the exit, which comes with the outputs already safe.
+  hubrt::hubd::finish_logging(hubrt::hubd::kLogFinishTimeout);
+  return status;
 }

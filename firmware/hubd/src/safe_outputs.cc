@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "hubrt/assembly/hub_types.h"
+#include "hubrt/assembly/linux_device_libraries.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/linux/backend.h"
@@ -42,12 +43,8 @@ hal::BoardConfig gpio_only(hal::BoardConfig board) {
   return board;
 }
 
-// Names the hub's buses and bus devices, which --safe-outputs leaves alone, and why.
+// Names the hub's buses, which --safe-outputs leaves alone, and why.
 void log_untouched(const hal::BoardRequirements& required, spdlog::logger& log) {
-  for (const std::string& device : required.modbus_devices) {
-    log.info("{} (Modbus): not touched; the lift drive stops by itself on its communication watchdog",
-             device);
-  }
   for (const std::string& bus : required.can_buses) {
     log.info("{} (CAN): not touched; the GPIO run lines are what enable the tool", bus);
   }
@@ -66,6 +63,25 @@ Expected<hal::BoardRequirements> hub_requirements(const hal::BoardConfig& board,
 }
 
 }  // namespace
+
+void stop_devices(const config::HubConfig& hub, const hal::BoardConfig& board, hal::Backend* backend,
+                  spdlog::logger& log) {
+  const hub_api::HubType* type = assembly::find_hub_type(hub.type);
+  if (type == nullptr) return;
+  if (backend == nullptr) {
+    for (const hal::BoardModbusDevice& device : board.modbus) {
+      log.info("{} (Modbus): simulated inside the stopped hubd; nothing to stop", device.config.device);
+    }
+    return;
+  }
+  for (const hub_api::DeviceStopReport& stop : type->stop_devices(hub, board, *backend, kDeviceStopTimeout)) {
+    if (stop.stopped) {
+      log.info("{}: stopped ({})", stop.device, stop.message);
+    } else {
+      log.error("{}: NOT STOPPED, left to its own communication watchdog: {}", stop.device, stop.message);
+    }
+  }
+}
 
 Expected<std::vector<hal::DigitalOutputConfig>> safe_output_configs(const hal::BoardConfig& board,
                                                                     const config::HubConfig& hub) {
@@ -134,14 +150,16 @@ int run_safe_outputs(const SafeOutputsRequest& request, spdlog::logger& log) {
     backend = &simulated->backend();
     log.warn("fake backend: the lines a stopped hubd drove lived in that process; these are fresh ones");
   } else {
-    // GPIO outputs only: no device library beyond GPIO is needed (LinuxDeviceLibraries).
-    linux_backend = std::make_unique<hal::LinuxBackend>(hal::LinuxDeviceLibraries{});
+    // The program's device libraries: a hub type's devices that must be told to stop (the lift
+    // drive on Modbus) are opened as the hub opened them.
+    linux_backend = std::make_unique<hal::LinuxBackend>(assembly::linux_device_libraries());
     backend = linux_backend.get();
   }
 
   log_untouched(*required, log);
   const auto sleep = [](Duration d) { std::this_thread::sleep_for(d); };
   const SafeOutputsReport report = drive_outputs_safe(*backend, *outputs, BusyRetry{}, sleep, log);
+  stop_devices(*hub, *board, request.backend == assembly::BackendKind::kFake ? nullptr : backend, log);
   if (!report.failures.empty()) {
     std::vector<std::string> failed;
     for (const std::string& message : report.failures) failed.push_back(message.substr(0, message.find(':')));

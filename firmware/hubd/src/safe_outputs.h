@@ -3,12 +3,12 @@
 // the outputs are made safe after any end of hubd, including those no handler sees (SIGKILL, the
 // OOM killer, a crash): see docs/deploy.md, "Safe outputs after any stop".
 //
-// It joins no DDS domain and opens nothing but those outputs: no inputs, no CAN bus, no Modbus
-// device. The lift drive on Modbus is left alone: the Tool ECU writes the drive's communication
-// watchdog every exchange, so the drive switches its power stage off by itself once the hub has
-// been silent that long (docs/protocols/lift-drive-modbus.md), and a halt from here would need
-// the drive's register map and enable state in hubd. Each Modbus device and CAN bus of the hub is
-// named in the log as not touched.
+// It joins no DDS domain and opens nothing but those outputs and the devices the hub type says
+// must be told to stop (HubType::stop_devices: the Tool ECU's lift drive, one Modbus write with a
+// short timeout, best effort and logged; the drive's own communication watchdog, which the hub
+// wrote on every exchange, stops it anyway within drive_watchdog_ms of the hub's last request —
+// docs/protocols/lift-drive-modbus.md). No inputs, no CAN bus: each CAN bus is named in the log as
+// not touched.
 #pragma once
 
 #include <functional>
@@ -62,6 +62,17 @@ struct SafeOutputsReport {
 SafeOutputsReport drive_outputs_safe(hal::Backend& backend, std::span<const hal::DigitalOutputConfig> outputs,
                                      const BusyRetry& retry, const std::function<void(Duration)>& sleep,
                                      spdlog::logger& log);
+
+// How long the stop of one device may take (a drive answers within 10 ms; a connection attempt to
+// one that is gone is bounded by this too): the unit's ExecStopPost must end promptly.
+inline constexpr Duration kDeviceStopTimeout = std::chrono::milliseconds(200);
+
+// Tells the hub type's devices to stop (HubType::stop_devices), logging each: "stopped", or
+// "NOT STOPPED" with the reason. `backend` null (the fake backend, whose simulated devices lived
+// in the stopped hubd): each Modbus device is named as having nothing to stop. A failed stop does
+// not change --safe-outputs' exit status: it is best effort, the device's own watchdog the bound.
+void stop_devices(const config::HubConfig& hub, const hal::BoardConfig& board, hal::Backend* backend,
+                  spdlog::logger& log);
 
 struct SafeOutputsRequest {
   std::string board_file;  // found by hubd as for a run

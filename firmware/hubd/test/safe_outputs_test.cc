@@ -228,7 +228,7 @@ TEST(RunSafeOutputs, NamesTheBusesOfTheToolEcuAsNotTouched) {
                                      assembly::BackendKind::kFake, &assembly::fake_simulation()},
                                     log);
   EXPECT_EQ(code, kSafeOutputsDone) << text.str();
-  EXPECT_THAT(text.str(), HasSubstr("lift_drive (Modbus): not touched"));
+  EXPECT_THAT(text.str(), HasSubstr("lift_drive (Modbus): simulated inside the stopped hubd"));
   EXPECT_THAT(text.str(), HasSubstr("tool_bus (CAN): not touched"));
   EXPECT_THAT(text.str(), HasSubstr("tool.run_forward: driven to its safe level (inactive)"));
 }

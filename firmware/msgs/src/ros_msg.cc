@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "msg_values.h"
+
 namespace hubrt::msgs::ros {
 namespace {
 
@@ -26,13 +28,18 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// The line without its comment; a '#' inside a quoted constant or default value is kept.
+// The line without its comment; a '#' inside a quoted constant or default value is kept (inside
+// quotes a backslash escapes the next character, as in 'it\'s').
 std::string_view strip_comment(std::string_view line) {
   char quote = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quote != 0) {
-      if (c == quote) quote = 0;
+      if (c == '\\') {
+        ++i;
+      } else if (c == quote) {
+        quote = 0;
+      }
     } else if (c == '"' || c == '\'') {
       quote = c;
     } else if (c == '#') {
@@ -158,7 +165,7 @@ std::string canonical_type(const MsgField& field) {
 }
 
 Expected<MsgSpec> parse_msg(std::string_view text, std::string package, std::string name, std::string file) {
-  MsgSpec spec{std::move(package), std::move(name), std::move(file), {}};
+  MsgSpec spec{std::move(package), std::move(name), std::move(file), {}, {}};
   int line_no = 0;
   std::size_t pos = 0;
   while (pos <= text.size()) {
@@ -186,8 +193,25 @@ Expected<MsgSpec> parse_msg(std::string_view text, std::string package, std::str
       if (!valid_constant_name(field_name)) {
         return parser.error(fmt::format("constant '{}' must be UPPER_CASE", field_name));
       }
-      if (trim(after.substr(1)).empty())
-        return parser.error(fmt::format("constant '{}' has no value", field_name));
+      const std::string_view value = trim(after.substr(1));
+      if (value.empty()) return parser.error(fmt::format("constant '{}' has no value", field_name));
+      if (!is_primitive(type_token)) {
+        return parser.error(
+            fmt::format("constant '{}': its type '{}' must be a primitive type without "
+                        "bound or array",
+                        field_name, type_token));
+      }
+      MsgConstant constant{std::string(type_token), std::string(field_name), {}, line_no};
+      if (const std::string problem = normalise_constant_value(type_token, value, constant.value);
+          !problem.empty()) {
+        return parser.error(fmt::format("constant '{}' = {}: {}", field_name, value, problem));
+      }
+      const auto same = std::find_if(spec.constants.begin(), spec.constants.end(),
+                                     [&](const MsgConstant& c) { return c.name == field_name; });
+      if (same != spec.constants.end()) {
+        return parser.error(fmt::format("constant '{}' already declared on line {}", field_name, same->line));
+      }
+      spec.constants.push_back(std::move(constant));
       continue;
     }
     if (!valid_field_name(field_name)) {
@@ -202,6 +226,7 @@ Expected<MsgSpec> parse_msg(std::string_view text, std::string package, std::str
       return parser.error(fmt::format("field '{}' already declared on line {}", field_name, duplicate->line));
     }
     field->name = std::string(field_name);
+    field->default_value = std::string(after);
     spec.fields.push_back(std::move(*field));
   }
   return spec;

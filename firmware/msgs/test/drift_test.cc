@@ -63,7 +63,7 @@ std::string replace(std::string text, const std::string& from, const std::string
 }
 
 // The common and the dock types only, so that hubs added later do not change these cases (the
-// drift test over all_types() is ros2_interface_drift_test.cc).
+// check over every registered type is idl_mapping_test.cc).
 std::vector<std::string> drift(const std::vector<ros::MsgSpec>& msgs) {
   std::vector<const TypeInfo*> types;
   for (const auto list : {reflected::types_of_builtin_interfaces(), reflected::types_of_diagnostic_msgs(),

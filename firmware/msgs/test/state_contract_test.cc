@@ -37,7 +37,7 @@ TEST(StateContract, EveryStateStartsWithTheCommonFieldsInOrder) {
     if (!is_hub_type_ending_with(*t, "State")) continue;
     ++states;
     // Hub States are bounded (issue 11: error_list as runtime::ErrorList holds it); the simulated
-    // station's (firmware/sim/msg/station.idl, not a hub) is not.
+    // station's (firmware/sim/msg/StationState.msg, not a hub) is not.
     const bool hub = t->idl_file != "station.idl";
     expect_prefix(*t, {{"header", "hub_msgs/msg/StateHeader"},
                        {"name", hub ? "string<64>" : "string"},

@@ -234,6 +234,22 @@ Expected<Messages> load_ros2_tree_as_ros1(const std::filesystem::path& root) {
   return out;
 }
 
+Expected<Messages> load_definitions_as_ros1(std::span<const msgs::MsgDefinition> definitions) {
+  constexpr std::string_view kPackage = "hub_msgs/msg/";
+  Messages out;
+  for (const msgs::MsgDefinition& definition : definitions) {
+    if (!definition.ros_name.starts_with(kPackage)) continue;
+    const std::string name = fmt::format("hub_msgs/{}", definition.ros_name.substr(kPackage.size()));
+    auto message = ros1_from_ros2_msg(definition.text, name);
+    if (!message) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}.msg: {}", definition.ros_name, message.error().message));
+    }
+    out.insert_or_assign(name, std::move(*message));
+  }
+  return out;
+}
+
 std::string msg_text(const Message& message) {
   std::string out;
   for (const Constant& c : message.constants) out += fmt::format("{} {}={}\n", c.type, c.name, c.value);

@@ -1,7 +1,12 @@
 // ROS 1 definitions and md5sums against what genmsg generated into roscpp's std_msgs headers
 // (ros::message_traits: the definition and md5sum a roscpp publisher announces), and the hub's
-// own definitions derived from ros2/hub_msgs.
+// own definitions derived from the hub types' .msg texts (those built into the program, and a
+// ROS 2 interface tree on disk).
 #include "hubrt/ros1/definition.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <std_msgs/ColorRGBA.h>
@@ -10,6 +15,7 @@
 #include <std_msgs/String.h>
 
 #include "hubrt/msgs/all_types.h"
+#include "hubrt/msgs/definitions.h"
 
 namespace hubrt::ros1 {
 namespace {
@@ -39,9 +45,34 @@ TEST(Ros1Definition, Md5sumsAreGenmsgs) {
 }
 
 Messages hub_messages() {
-  auto messages = load_ros2_tree_as_ros1(std::filesystem::path(HUBRT_SOURCE_DIR) / "ros2");
+  auto messages = load_definitions_as_ros1(msgs::msg_definitions());
   EXPECT_TRUE(messages) << messages.error().message;
   return messages ? *messages : Messages{};
+}
+
+// hub_msgs only: the standard ROS 2 types have ROS 1 forms of their own (time, std_msgs).
+TEST(Ros1Definition, TheBuiltInDefinitionsGiveTheHubTypesOnly) {
+  const Messages messages = hub_messages();
+  EXPECT_TRUE(messages.contains("hub_msgs/DockState"));
+  EXPECT_TRUE(messages.contains("hub_msgs/SimSignals"));
+  EXPECT_FALSE(messages.contains("std_msgs/Header"));
+  EXPECT_FALSE(messages.contains("builtin_interfaces/Time"));
+}
+
+// A tree on disk (hubbridge --msg-dir) reads as the same definitions.
+TEST(Ros1Definition, AnInterfaceTreeOnDiskReadsLikeTheBuiltInTexts) {
+  const auto root = std::filesystem::path(::testing::TempDir()) / "ros1_definition_tree";
+  std::filesystem::create_directories(root / "hub_msgs" / "msg");
+  for (const char* type : {"DockCommand", "DockSlot"}) {
+    std::ofstream(root / "hub_msgs" / "msg" / (std::string(type) + ".msg"))
+        << *msgs::msg_text(std::string("hub_msgs/") + type);
+  }
+  auto tree = load_ros2_tree_as_ros1(root);
+  ASSERT_TRUE(tree) << tree.error().message;
+  ASSERT_EQ(tree->size(), 2U);
+  const Messages built_in = hub_messages();
+  EXPECT_EQ(msg_text(tree->at("hub_msgs/DockCommand")), msg_text(built_in.at("hub_msgs/DockCommand")));
+  EXPECT_FALSE(load_ros2_tree_as_ros1(root / "missing"));
 }
 
 TEST(Ros1Definition, Ros2MsgBecomesRos1Form) {

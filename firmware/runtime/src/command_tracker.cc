@@ -2,19 +2,23 @@
 
 namespace hubrt::runtime {
 
-CommandTracker::Arrival CommandTracker::on_valid_command(Time now, bool differs, bool is_reset) noexcept {
-  last_arrival_ = now;
+CommandTracker::Arrival CommandTracker::on_valid_command(Time now, Time written, bool differs,
+                                                         bool is_reset) noexcept {
+  last_taken_ = now;
+  // The youngest command known feeds the watchdog: one that was written earlier than a command
+  // already seen (another writer's, delayed) cannot make the node's freshness shorter.
+  if (!has_echo_ || !in_force_ || written > last_written_) last_written_ = written;
   const bool takes_effect = differs || !in_force_;
   has_echo_ = true;
   in_force_ = true;
   if (!takes_effect) return Arrival::kRepeat;
-  took_effect_ = now;
+  took_effect_ = written;
   reset_in_force_ = is_reset;
   return Arrival::kTookEffect;
 }
 
 CommandTracker::Watchdog CommandTracker::check(Time now) noexcept {
-  if (in_force_ && now - last_arrival_ > timeout_) {
+  if (in_force_ && now - last_written_ > timeout_) {
     in_force_ = false;
     return Watchdog::kTripped;
   }

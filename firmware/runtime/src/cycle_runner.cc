@@ -27,9 +27,14 @@ Expected<StopReason> CycleRunner::run(Hub& hub, const Clock& clock, const RunHoo
       return StopReason::kSignal;
     }
     if (events->stop_requested) return StopReason::kRequested;
-    if (events->woken) hub.command_step(clock.now());
+    // Held past a deadline by more than a period: stopped (SIGSTOP), paused (a VM), or a step that
+    // blocked. The nodes drop what queued meanwhile before any step can take it.
+    const Instant woke = clock.now();
+    if (woke.mono - next > period) hub.note_late(woke, woke.mono - next);
+    if (events->woken) hub.command_step(woke);
     if (!events->deadline_reached) continue;
-    const Instant now = clock.now();
+    // One reading of the clock per step, as before the stall check: a fresh one after a command step.
+    const Instant now = events->woken ? clock.now() : woke;
     // Deadlines after `next` that have passed too were missed: counted, not run.
     const std::int64_t missed = now.mono > next ? (now.mono - next) / period : 0;
     hub.count_overruns(static_cast<std::uint64_t>(missed));

@@ -89,6 +89,13 @@ bool Hub::step_node(std::size_t index, const Instant& now, bool publish_all) noe
   return took_effect;
 }
 
+void Hub::note_late(const Instant& now, Duration late) noexcept {
+  if (late > stats_.longest_late) stats_.longest_late = late;
+  const Time discard_until = now.mono + std::max(kStallSettle, options_.period);
+  for (const auto& stage : stages_) stage->note_late(now, late, discard_until);
+  for (const auto& node : nodes_) node->note_late(now, late, discard_until);
+}
+
 void Hub::begin_opening_devices() noexcept {
   if (lifecycle_.enter(Lifecycle::kOpeningDevices, "files read; opening the devices of the nodes"))
     log_transition();
@@ -119,6 +126,13 @@ std::uint64_t Hub::states_deferred() const noexcept {
   for (const auto& node : nodes_) total += node->states_deferred();
   for (const auto& stage : stages_) total += stage->states_deferred();
   return total;
+}
+
+const NodeBase* Hub::hub_level_node() const noexcept {
+  for (const auto& stage : stages_) {
+    if (const NodeBase* node = stage->hub_level_node(); node != nullptr) return node;
+  }
+  return nullptr;
 }
 
 void Hub::enter_safe_state() noexcept {

@@ -23,6 +23,10 @@ void ManualCycleTimer::signal_at(Time at, int signal) {
   schedule(Scheduled{at, false, false, signal});
 }
 
+void ManualCycleTimer::pause_at(Time at, Duration length) {
+  schedule(Scheduled{at, false, false, 0, length});
+}
+
 Expected<TimerEvents> ManualCycleTimer::wait_until(Time deadline) {
   ++waits_;
   Time now = clock_.now().mono;
@@ -39,6 +43,10 @@ Expected<TimerEvents> ManualCycleTimer::wait_until(Time deadline) {
   TimerEvents events;
   while (!scheduled_.empty() && scheduled_.front().at <= now) {
     const Scheduled& event = scheduled_.front();
+    if (event.pause > Duration::zero()) {  // time passes without this process running
+      clock_.advance(event.pause);
+      now += event.pause;
+    }
     if (event.wake) woken_.store(true);
     if (event.stop) stop_requested_.store(true);
     if (event.signal != 0 && events.stop_signal == 0) events.stop_signal = event.signal;

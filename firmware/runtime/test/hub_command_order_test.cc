@@ -29,7 +29,7 @@ using Log = std::vector<std::string>;
 class LoggingSource final : public CommandSource<ValveCommand> {
  public:
   LoggingSource(std::string node, Log& log) : node_(std::move(node)), log_(log) {}
-  Result<const ValveCommand*> next() noexcept override {
+  Result<ReceivedCommand<ValveCommand>> next() noexcept override {
     log_.push_back(node_ + " next");
     return queue_.next();
   }

@@ -18,6 +18,7 @@
 #include "hubrt/runtime/node.h"
 #include "hubrt/runtime/reflected_message_ops.h"
 
+#include "hub_msgs_common.h"
 #include "node_test_support.h"
 #include "valve_test_reflect.h"
 
@@ -212,7 +213,7 @@ TEST_F(NodeLifecycleTest, ThePublishedHeaderCarriesTheLifecycle) {
 
 // The ROS 2 interface names the same numbers: LIFECYCLE_<NAME>=<number> for every state.
 TEST(LifecycleName, MatchesTheConstantsOfStateHeaderMsg) {
-  std::ifstream msg(std::string(HUBRT_SOURCE_DIR) + "/ros2/hub_msgs/msg/StateHeader.msg");
+  std::ifstream msg(std::string(HUBRT_SOURCE_DIR) + "/firmware/msgs/msg/StateHeader.msg");
   ASSERT_TRUE(msg.good());
   const std::regex constant(R"(^uint8 LIFECYCLE_([A-Z_]+)=([0-9]+)\b)");
   std::size_t seen = 0;
@@ -225,6 +226,20 @@ TEST(LifecycleName, MatchesTheConstantsOfStateHeaderMsg) {
     ++seen;
   }
   EXPECT_EQ(seen, 7u) << "one constant per state";
+}
+
+// The same numbers as the constants of the IDL generated from StateHeader.msg (module
+// StateHeader_Constants: idlc's #defines), so C code and tools built from the IDL agree too.
+TEST(LifecycleName, TheGeneratedStateHeaderConstantsAreTheLifecycleValues) {
+  const auto value = [](Lifecycle l) { return static_cast<int>(l); };
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_CONFIGURING, value(Lifecycle::kConfiguring));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_OPENING_DEVICES,
+            value(Lifecycle::kOpeningDevices));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_SAFE, value(Lifecycle::kSafe));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_OPERATIONAL, value(Lifecycle::kOperational));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_FAULT, value(Lifecycle::kFault));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_RECOVERING, value(Lifecycle::kRecovering));
+  EXPECT_EQ(hub_msgs_msg_dds__StateHeader_Constants_LIFECYCLE_STOPPING, value(Lifecycle::kStopping));
 }
 
 TEST(LifecycleName, NamesEveryWireValueAndUnknownBeyond) {

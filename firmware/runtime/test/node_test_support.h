@@ -40,33 +40,39 @@ struct OwnedValveCommand {
 class QueueSource final : public CommandSource<ValveCommand> {
  public:
   // Copies the command and builds its wire form now, so that next() never allocates.
-  void push(const OwnedValveCommand& command) {
+  void push(const OwnedValveCommand& command) { push(command, std::nullopt); }
+  // With the source timestamp its writer would have given it (DDS: the writer's wall clock).
+  void push(const OwnedValveCommand& command, std::optional<WallTime> written) {
     auto owned = std::make_unique<OwnedValveCommand>(command);
     wires_.push_back(owned->wire());
+    stamps_.push_back(written);
     queue_.push_back(std::move(owned));
   }
   void fail_next() { fail_next_ = true; }
   // Limits delivery to the first `count` commands pushed so far (all, by default), so that a test
   // can queue everything up front and hand commands out per cycle without allocating.
   void deliver_up_to(std::size_t count) { limit_ = count; }
-  Result<const ValveCommand*> next() noexcept override {
+  Result<ReceivedCommand<ValveCommand>> next() noexcept override {
     if (fail_next_) {
       fail_next_ = false;
       return Status(ErrorCode::kIo);
     }
-    if (queue_.empty() || delivered_ >= limit_) return static_cast<const ValveCommand*>(nullptr);
+    if (queue_.empty() || delivered_ >= limit_) return ReceivedCommand<ValveCommand>{};
     ++delivered_;
     current_ = std::move(queue_.front());
     queue_.pop_front();
     wire_ = wires_.front();
     wires_.pop_front();
-    return &wire_;
+    const std::optional<WallTime> stamp = stamps_.front();
+    stamps_.pop_front();
+    return ReceivedCommand<ValveCommand>{&wire_, stamp};
   }
   [[nodiscard]] std::size_t pending() const { return queue_.size(); }
 
  private:
   std::deque<std::unique_ptr<OwnedValveCommand>> queue_;
   std::deque<ValveCommand> wires_;
+  std::deque<std::optional<WallTime>> stamps_;
   std::unique_ptr<OwnedValveCommand> current_;
   ValveCommand wire_{};
   bool fail_next_ = false;

@@ -23,7 +23,11 @@ Expected<hal::SupervisedOutput> open_board_output(const hal::BoardConfig& board,
     return make_error(ErrorCode::kNotFound,
                       fmt::format("{}: board {} has no output '{}'", owner, board.file, signal));
   }
-  hal::SupervisedOutput opened(backend, output->config);
+  // Pulled toward its safe level, so that the line falls safe when this process dies (the kernel
+  // releases it) even before the unit's ExecStopPost (hubd --safe-outputs) runs.
+  hal::DigitalOutputConfig config = output->config;
+  config.bias_toward_safe = true;
+  hal::SupervisedOutput opened(backend, config);
   opened.open_now(now);
   return opened;
 }

@@ -9,29 +9,23 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 
 #include <gtest/gtest.h>
 
-#include "hubrt/dds/reader.h"
-#include "hubrt/dds/sample.h"
-#include "hubrt/dds/topic.h"
-#include "hubrt/dds/writer.h"
-#include "hubrt/runtime/lifecycle.h"
 #include "hubrt/test_support/child_process.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "allow_list.h"
-#include "hub_process.h"
 #include "operator_messages.h"
 
 namespace hubrt::operator_hub {
 namespace {
 
-using std::chrono::milliseconds;
 using std::chrono::seconds;
+using test_support::HubUnderTest;
+using test_support::StateStream;
 
 // Generous: a busy 2-core machine running sanitizer builds in parallel; the test checks
 // behaviour, not timing.
@@ -43,74 +37,33 @@ hub_msgs::OperatorPanelStateView view(const OperatorPanelState& state) {
   return hub_msgs::OperatorPanelStateView(state);
 }
 
-// The shipped hub file with the test allow-list (absolute: the copy lives elsewhere).
-std::string test_hub_file(std::string_view layout) {
-  std::ifstream in(kDir + "/operator_hub.yaml");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto list = text.find("allow_list: operators.list");
-  text.replace(list, 26, "allow_list: " + kDir + "/test/operators.list");
-  const auto at = text.find("layout: node_type");
-  text.replace(at, 17, "layout: " + std::string(layout));
-  const auto path =
-      std::filesystem::path(::testing::TempDir()) / ("operator_hub-" + std::string(layout) + ".yaml");
-  std::ofstream(path) << text;
-  return path.string();
-}
-
 class HubdOperatorTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
+    ASSERT_NO_FATAL_FAILURE(hub_.open());
     // The node-type layout's topics (operator_hub.yaml).
-    auto command_topic = dds::Topic<OperatorPanelCommand>::create(*participant_, "/operator_panel/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<OperatorPanelCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<OperatorPanelState>::create(*participant_, "/operator_hub/panel/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
-    auto reader = dds::Reader<OperatorPanelState>::create(*participant_, *state_topic_);
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
-
-    integration::HubProcessOptions options;
-    options.board = kDir + "/../../boards/host-sim-operator-hub.yaml";
-    options.hub = test_hub_file("node_type");
-    auto hub = integration::HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
-    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(commands_, "/operator_panel/command"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/operator_hub/panel/state"));
+    // The shipped hub file with the test allow-list (absolute: the copy lives elsewhere).
+    const std::string hub_file =
+        hub_.hub_file("operator_hub", "node_type",
+                      {{"allow_list: operators.list", "allow_list: " + kDir + "/test/operators.list"}});
+    ASSERT_NO_FATAL_FAILURE(
+        hub_.start({.board = kDir + "/../../boards/host-sim-operator-hub.yaml", .hub = hub_file}));
   }
 
-  void TearDown() override { stop_planner(); }
-
-  bool wait_for_state(const std::function<bool(const OperatorPanelState&)>& predicate) {
-    const auto deadline = std::chrono::steady_clock::now() + kPatience;
-    while (std::chrono::steady_clock::now() < deadline) {
-      const Result<bool> taken = state_reader_->take_next(state_);
-      if (taken.is_ok() && taken.value()) {
-        if (predicate(state_.get())) return true;
-        continue;
-      }
-      std::this_thread::sleep_for(milliseconds(2));
-    }
-    return false;
+  ::testing::AssertionResult wait_for_state(const std::function<bool(const OperatorPanelState&)>& predicate,
+                                            std::string_view what) {
+    return hub_.wait_for(*states_, predicate, what);
   }
+  const OperatorPanelState& state() const { return states_->latest(); }
 
   // `hubctl send <topic> <fields> --once`: what a person, a script or the screen does.
   void hubctl_send(const std::vector<std::string>& args) {
     std::vector<std::string> all{"send"};
     all.insert(all.end(), args.begin(), args.end());
     for (std::string_view extra : {"--once", "--wait", "1", "--quiet"}) all.emplace_back(extra);
-    auto send = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, all, domain_->env());
+    auto send = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, all, hub_.domain().env());
     ASSERT_TRUE(send) << send.error().message;
     auto status = send->wait(kPatience);
     ASSERT_TRUE(status) << status.error().message;
@@ -126,113 +79,86 @@ class HubdOperatorTest : public ::testing::Test {
 
   // Like the planner: the wanted command, repeated every 50 ms (the timeout is 1 s).
   void command(std::string_view action) {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      action_ = action;
-      planning_ = true;
-    }
-    if (planner_.joinable()) return;
-    planner_ = std::thread([this] {
-      for (;;) {
-        hub_msgs::OperatorPanelCommand c;
-        {
-          const std::lock_guard<std::mutex> lock(mutex_);
-          if (!planning_) return;
-          c.set_action(action_);
-        }
-        c.set_target_type("operator_panel");
-        c.set_target_name("panel");
-        if (!command_writer_->write(c.wire()).is_ok()) return;
-        std::this_thread::sleep_for(milliseconds(50));
-      }
-    });
-  }
-  void stop_planner() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      planning_ = false;
-    }
-    if (planner_.joinable()) planner_.join();
+    hub_msgs::OperatorPanelCommand c;
+    c.set_action(action);
+    c.set_target_type("operator_panel");
+    c.set_target_name("panel");
+    hub_.plan(*commands_, c.wire());
   }
 
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<OperatorPanelCommand>> command_topic_;
-  std::optional<dds::Writer<OperatorPanelCommand>> command_writer_;
-  std::optional<dds::Topic<OperatorPanelState>> state_topic_;
-  std::optional<dds::Reader<OperatorPanelState>> state_reader_;
-  dds::Sample<OperatorPanelState> state_;
-  std::optional<integration::HubProcess> hub_;
-  std::mutex mutex_;  // guards action_ and planning_, shared with the planner thread
-  std::string action_;
-  bool planning_ = false;
-  std::thread planner_;
+  dds::Writer<OperatorPanelCommand>* commands_ = nullptr;
+  StateStream<OperatorPanelState>* states_ = nullptr;
+  HubUnderTest hub_{kPatience};
 };
 
 TEST_F(HubdOperatorTest, VerifiesByBadgeCountsPressesAndLogsOutWhenCommandsStop) {
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).reader_open(); }))
-      << hub_->output();
-  EXPECT_FALSE(view(state_.get()).operator_verified());
-  EXPECT_EQ(view(state_.get()).name(), "panel");
+  ASSERT_TRUE(
+      wait_for_state([](const OperatorPanelState& s) { return view(s).reader_open(); }, "reader open"));
+  EXPECT_FALSE(view(state()).operator_verified());
+  EXPECT_EQ(view(state()).name(), "panel");
 
   command("verify");
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).fresh_msg(); }));
+  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).fresh_msg(); }, "fresh"));
   show_badge(kAnnaBadge);
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) {
-    return view(s).operator_verified() && view(s).operator_name() == "Anna Svensson";
-  })) << hub_->output();
-  EXPECT_EQ(view(state_.get()).last_badge(), "accepted");
-  EXPECT_EQ(view(state_.get()).last_badge_tag(), "9ad4c64a");
+  ASSERT_TRUE(wait_for_state(
+      [](const OperatorPanelState& s) {
+        return view(s).operator_verified() && view(s).operator_name() == "Anna Svensson";
+      },
+      "Anna Svensson verified"));
+  EXPECT_EQ(view(state()).last_badge(), "accepted");
+  EXPECT_EQ(view(state()).last_badge_tag(), "9ad4c64a");
 
   show_badge("0004123457");
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).badge_reads() == 2; }));
-  EXPECT_EQ(view(state_.get()).last_badge(), "rejected");
-  EXPECT_EQ(view(state_.get()).last_badge_reason(), "unknown badge");
-  EXPECT_EQ(view(state_.get()).operator_name(), "Anna Svensson");
+  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).badge_reads() == 2; },
+                             "2 badge reads"));
+  EXPECT_EQ(view(state()).last_badge(), "rejected");
+  EXPECT_EQ(view(state()).last_badge_reason(), "unknown badge");
+  EXPECT_EQ(view(state()).operator_name(), "Anna Svensson");
 
   // The button: pressed (held past its debounce: the press is seen before the release is sent).
   set_button(true);
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).confirm_seq() == 1; }))
-      << hub_->output();
-  EXPECT_EQ(view(state_.get()).confirm_source(), "button");
+  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).confirm_seq() == 1; },
+                             "confirm_seq 1"));
+  EXPECT_EQ(view(state()).confirm_source(), "button");
   set_button(false);
 
   // The screen's "done" button.
   hubctl_send({"/operator_hub/operator/screen_confirm", "source=screen", "press_id=1", "--type",
                "hub_msgs/msg/OperatorConfirm"});
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).confirm_seq() == 2; }))
-      << hub_->output();
-  EXPECT_EQ(view(state_.get()).confirm_source(), "screen");
+  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).confirm_seq() == 2; },
+                             "confirm_seq 2"));
+  EXPECT_EQ(view(state()).confirm_source(), "screen");
 
   // The planner stops: the watchdog logs the operator out.
-  stop_planner();
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) {
-    return !view(s).fresh_msg() && !view(s).operator_verified();
-  })) << hub_->output();
-  EXPECT_EQ(view(state_.get()).confirm_seq(), 2U);
+  hub_.stop_planner();
+  ASSERT_TRUE(wait_for_state(
+      [](const OperatorPanelState& s) { return !view(s).fresh_msg() && !view(s).operator_verified(); },
+      "not fresh, logged out"));
+  EXPECT_EQ(view(state()).confirm_seq(), 2U);
 
-  ASSERT_TRUE(hub_->process().signal(SIGTERM));
-  auto status = hub_->process().wait(kPatience);
+  ASSERT_TRUE(hub_.hub().process().signal(SIGTERM));
+  auto status = hub_.hub().process().wait(kPatience);
   ASSERT_TRUE(status) << status.error().message;
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_->output();
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_.output();
   // No badge in clear in anything hubd wrote.
-  EXPECT_EQ(hub_->output().find("000412345"), std::string::npos) << hub_->output();
+  EXPECT_EQ(hub_.output().find("000412345"), std::string::npos) << hub_.output();
 }
 
 TEST_F(HubdOperatorTest, AMalformedBadgeIsRejectedWithItsReason) {
   command("verify");
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).fresh_msg(); }));
+  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).fresh_msg(); }, "fresh"));
   show_badge(std::string(40, '7'));
-  ASSERT_TRUE(wait_for_state([](const OperatorPanelState& s) { return view(s).badge_reads() == 1; }));
-  EXPECT_EQ(view(state_.get()).last_badge(), "rejected");
-  EXPECT_EQ(view(state_.get()).last_badge_reason(), "malformed: too long");
-  EXPECT_FALSE(view(state_.get()).operator_verified());
+  ASSERT_TRUE(
+      wait_for_state([](const OperatorPanelState& s) { return view(s).badge_reads() == 1; }, "1 badge read"));
+  EXPECT_EQ(view(state()).last_badge(), "rejected");
+  EXPECT_EQ(view(state()).last_badge_reason(), "malformed: too long");
+  EXPECT_FALSE(view(state()).operator_verified());
 }
 
 TEST(OperatorBoardTest, TheRpi4BoardPassesHubdCheck) {
   auto domain = test_support::TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
-  auto finished = integration::run_hubd(
+  auto finished = test_support::run_hubd(
       *domain, {"--board", "rpi4-operator-hub", "--hub", "operator_hub", "--check"}, seconds(60));
   ASSERT_TRUE(finished) << finished.error().message;
   EXPECT_TRUE(finished->status.exited_with(0)) << finished->status.describe() << "\n" << finished->output;
@@ -247,10 +173,10 @@ TEST(OperatorBoardTest, CheckReportsAnAllowListMistakeWithItsLine) {
   std::ifstream in(kDir + "/operator_hub.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::ofstream(dir / "operator_hub.yaml") << text;
-  auto finished = integration::run_hubd(*domain,
-                                        {"--board", kDir + "/../../boards/host-sim-operator-hub.yaml",
-                                         "--hub", (dir / "operator_hub.yaml").string(), "--check"},
-                                        seconds(60));
+  auto finished = test_support::run_hubd(*domain,
+                                         {"--board", kDir + "/../../boards/host-sim-operator-hub.yaml",
+                                          "--hub", (dir / "operator_hub.yaml").string(), "--check"},
+                                         seconds(60));
   ASSERT_TRUE(finished) << finished.error().message;
   EXPECT_FALSE(finished->status.exited_with(0)) << finished->output;
   EXPECT_NE(finished->output.find("operators.list:2: expected '<SHA-256 in hex (64 digits)> <name>'"),

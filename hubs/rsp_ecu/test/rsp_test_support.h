@@ -51,11 +51,11 @@ inline OwnedCommand command(std::string_view action, std::string_view gripper = 
 class QueueSource final : public runtime::CommandSource<OwnedCommand::Wire> {
  public:
   void push(const OwnedCommand& c) { commands_.push_back(c); }
-  Result<const OwnedCommand::Wire*> next() noexcept override {
-    if (commands_.empty()) return static_cast<const OwnedCommand::Wire*>(nullptr);
+  Result<runtime::ReceivedCommand<OwnedCommand::Wire>> next() noexcept override {
+    if (commands_.empty()) return runtime::ReceivedCommand<OwnedCommand::Wire>{};
     current_ = commands_.front();
     commands_.pop_front();
-    return &current_.wire();
+    return runtime::ReceivedCommand<OwnedCommand::Wire>{&current_.wire(), std::nullopt};
   }
 
  private:

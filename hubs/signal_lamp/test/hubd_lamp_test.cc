@@ -3,31 +3,21 @@
 // hub type for free (echo, fresh_msg, the watchdog, the lifecycle, a clean stop) around the lamp.
 #include <csignal>
 #include <functional>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 
 #include <gtest/gtest.h>
 
-#include "hubrt/dds/reader.h"
-#include "hubrt/dds/sample.h"
-#include "hubrt/dds/topic.h"
-#include "hubrt/dds/writer.h"
 #include "hubrt/runtime/lifecycle.h"
+#include "hubrt/test_support/hub_under_test.h"
 
-#include "hub_process.h"
 #include "lamp_messages.h"
 
 namespace hubrt::signal_lamp {
 namespace {
 
-using std::chrono::milliseconds;
-using std::chrono::seconds;
-
-// Generous: a busy 2-core machine running sanitizer builds in parallel; the test checks
-// behaviour, not timing.
-constexpr auto kPatience = seconds(15);
+using test_support::HubUnderTest;
+using test_support::StateStream;
 
 hub_msgs::LampStateView view(const LampState& state) {
   return hub_msgs::LampStateView(state);
@@ -43,144 +33,80 @@ bool operational(const LampState& state) {
   return view(state).header().lifecycle() == static_cast<std::uint8_t>(runtime::Lifecycle::kOperational);
 }
 
+hub_msgs::LampCommand lamp_command(std::string_view action) {
+  hub_msgs::LampCommand c;
+  c.set_target_type("lamp");
+  c.set_target_name("lamp");
+  c.set_action(action);
+  return c;
+}
+
 class HubdLampTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
+    ASSERT_NO_FATAL_FAILURE(hub_.open());
     // The node-type layout's topics (signal_lamp.yaml): /lamp/command, /signal_lamp/lamp/state.
-    auto command_topic = dds::Topic<LampCommand>::create(*participant_, "/lamp/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<LampCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<LampState>::create(*participant_, "/signal_lamp/lamp/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
-    auto reader = dds::Reader<LampState>::create(*participant_, *state_topic_);
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
-
-    integration::HubProcessOptions options;
-    options.board = std::string(HUBRT_SIGNAL_LAMP_DIR) + "/test/lamp-sim.yaml";
-    options.hub = "signal_lamp";
-    auto hub = integration::HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
-    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(commands_, "/lamp/command"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/signal_lamp/lamp/state"));
+    ASSERT_NO_FATAL_FAILURE(hub_.start(
+        {.board = std::string(HUBRT_SIGNAL_LAMP_DIR) + "/test/lamp-sim.yaml", .hub = "signal_lamp"}));
   }
 
-  void TearDown() override { stop_planner(); }
-
-  // Takes States until one satisfies `predicate`; false after kPatience.
-  bool wait_for_state(const std::function<bool(const LampState&)>& predicate) {
-    const auto deadline = std::chrono::steady_clock::now() + kPatience;
-    while (std::chrono::steady_clock::now() < deadline) {
-      const Result<bool> taken = state_reader_->take_next(state_);
-      if (taken.is_ok() && taken.value()) {
-        if (predicate(state_.get())) return true;
-        continue;
-      }
-      std::this_thread::sleep_for(milliseconds(2));
-    }
-    return false;
+  // Takes States until one satisfies `predicate` (then state()).
+  ::testing::AssertionResult wait_for(const std::function<bool(const LampState&)>& predicate,
+                                      std::string_view what) {
+    return hub_.wait_for(*states_, predicate, what);
   }
+  const LampState& state() const { return states_->latest(); }
 
   // Like the planner: the wanted command, repeated every 50 ms (the timeout is 1 s).
-  void command(std::string_view action) {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      action_ = action;
-      planning_ = true;
-    }
-    if (planner_.joinable()) return;
-    planner_ = std::thread([this] {
-      for (;;) {
-        hub_msgs::LampCommand c;
-        {
-          const std::lock_guard<std::mutex> lock(mutex_);
-          if (!planning_) return;
-          c.set_action(action_);
-        }
-        c.set_target_type("lamp");
-        c.set_target_name("lamp");
-        if (!command_writer_->write(c.wire()).is_ok()) return;
-        std::this_thread::sleep_for(milliseconds(50));
-      }
-    });
-  }
-  void stop_planner() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      planning_ = false;
-    }
-    if (planner_.joinable()) planner_.join();
-  }
+  void command(std::string_view action) { hub_.plan(*commands_, lamp_command(action).wire()); }
 
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<LampCommand>> command_topic_;
-  std::optional<dds::Writer<LampCommand>> command_writer_;
-  std::optional<dds::Topic<LampState>> state_topic_;
-  std::optional<dds::Reader<LampState>> state_reader_;
-  dds::Sample<LampState> state_;
-  std::optional<integration::HubProcess> hub_;
-  std::mutex mutex_;  // guards action_ and planning_, shared with the planner thread
-  std::string action_;
-  bool planning_ = false;
-  std::thread planner_;
+  dds::Writer<LampCommand>* commands_ = nullptr;
+  StateStream<LampState>* states_ = nullptr;
+  HubUnderTest hub_;
 };
 
 TEST_F(HubdLampTest, FollowsItsCommandOverDdsAndGoesOutWhenCommandsStop) {
   // No command yet: out, not operational, not fresh.
-  ASSERT_TRUE(wait_for_state([](const LampState&) { return true; })) << hub_->output();
-  EXPECT_FALSE(view(state_.get()).lit());
-  EXPECT_FALSE(view(state_.get()).fresh_msg());
-  EXPECT_FALSE(operational(state_.get()));
-  EXPECT_EQ(view(state_.get()).name(), "lamp");
+  ASSERT_TRUE(wait_for([](const LampState&) { return true; }, "any State"));
+  EXPECT_FALSE(view(state()).lit());
+  EXPECT_FALSE(view(state()).fresh_msg());
+  EXPECT_FALSE(operational(state()));
+  EXPECT_EQ(view(state()).name(), "lamp");
 
   command("on");
-  ASSERT_TRUE(wait_for_state([](const LampState& s) {
-    return view(s).lit() && view(s).fresh_msg() && view(s).echo().action() == "on" && operational(s);
-  })) << hub_->output();
-  EXPECT_EQ(view(state_.get()).error_list().size(), 0u) << errors_of(state_.get());
+  ASSERT_TRUE(wait_for(
+      [](const LampState& s) {
+        return view(s).lit() && view(s).fresh_msg() && view(s).echo().action() == "on" && operational(s);
+      },
+      "lit, fresh, operational, echoing 'on'"));
+  EXPECT_EQ(view(state()).error_list().size(), 0u) << errors_of(state());
 
   command("off");
-  ASSERT_TRUE(wait_for_state([](const LampState& s) {
-    return !view(s).lit() && view(s).echo().action() == "off";
-  })) << hub_->output();
+  ASSERT_TRUE(wait_for([](const LampState& s) { return !view(s).lit() && view(s).echo().action() == "off"; },
+                       "out, echoing 'off'"));
 
   command("on");
-  ASSERT_TRUE(wait_for_state([](const LampState& s) { return view(s).lit(); })) << hub_->output();
+  ASSERT_TRUE(wait_for([](const LampState& s) { return view(s).lit(); }, "lit"));
   // The planner goes quiet: after the 1 s command timeout the watchdog puts the lamp out.
-  stop_planner();
-  ASSERT_TRUE(wait_for_state([](const LampState& s) { return !view(s).fresh_msg(); })) << hub_->output();
-  EXPECT_FALSE(view(state_.get()).lit());
-  EXPECT_FALSE(operational(state_.get()));
-  EXPECT_NE(errors_of(state_.get()).find("command timeout"), std::string::npos) << errors_of(state_.get());
-  EXPECT_EQ(view(state_.get()).echo().action(), "on") << "the echo still shows the last command";
+  hub_.stop_planner();
+  ASSERT_TRUE(wait_for([](const LampState& s) { return !view(s).fresh_msg(); }, "not fresh"));
+  EXPECT_FALSE(view(state()).lit());
+  EXPECT_FALSE(operational(state()));
+  EXPECT_NE(errors_of(state()).find("command timeout"), std::string::npos) << errors_of(state());
+  EXPECT_EQ(view(state()).echo().action(), "on") << "the echo still shows the last command";
 
   // A bad action is rejected with its reason, naming the lamp's actions.
-  hub_msgs::LampCommand dance;
-  dance.set_target_type("lamp");
-  dance.set_target_name("lamp");
-  dance.set_action("blink");
-  ASSERT_TRUE(command_writer_->write(dance.wire()).is_ok());
-  ASSERT_TRUE(wait_for_state([](const LampState& s) {
-    return errors_of(s).find("unknown action 'blink' (expected one of: on, off, reset)") != std::string::npos;
-  })) << hub_->output();
+  ASSERT_TRUE(commands_->write(lamp_command("blink").wire()).is_ok());
+  ASSERT_TRUE(wait_for(
+      [](const LampState& s) {
+        return errors_of(s).find("unknown action 'blink' (expected one of: on, off, reset)") !=
+               std::string::npos;
+      },
+      "the rejection of 'blink' in error_list"));
 
-  ASSERT_TRUE(hub_->process().signal(SIGTERM));
-  auto status = hub_->process().wait(kPatience);
-  ASSERT_TRUE(status) << status.error().message;
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_->output();
-  EXPECT_NE(hub_->output().find("outputs driven to their safe state"), std::string::npos) << hub_->output();
+  EXPECT_TRUE(hub_.stops_cleanly(SIGTERM));
 }
 
 }  // namespace

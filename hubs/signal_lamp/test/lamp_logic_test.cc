@@ -196,7 +196,7 @@ TEST(SignalLampSettings, BadSettingsNameTheLine) {
 }
 
 // The hub layout needs no code of the hub type's own: NodeWiring checks that the hub-level
-// messages (msg/signal_lamp.idl) have a field named as the node, of the node's types.
+// messages (msg/SignalLamp*.msg) have a field named as the node, of the node's types.
 TEST(SignalLampLayouts, TheHubLayoutNeedsTheNodeCalledLikeItsField) {
   const auto check = [](const std::string& node_name) -> Expected<void> {
     auto root = config::YamlMap::load_string(

@@ -9,6 +9,7 @@
 #include "hubrt/hub_api/subscriptions.h"
 #include "hubrt/hubs/board_devices.h"
 
+#include "lift_drive_stop.h"
 #include "lift_logic.h"
 #include "smart_tool_logic.h"
 
@@ -143,6 +144,25 @@ class ToolEcuHubType final : public hub_api::HubType {
       if (!added) return added;
     }
     return wiring->finish();
+  }
+
+  // The lift drive: stopped by one Modbus write (lift_drive_stop.h). The smart tool needs nothing
+  // here: its run lines are GPIO outputs, which hubd drives safe.
+  [[nodiscard]] std::vector<hub_api::DeviceStopReport> stop_devices(const config::HubConfig& config,
+                                                                    const hal::BoardConfig& board,
+                                                                    hal::Backend& backend,
+                                                                    Duration timeout) const override {
+    std::vector<hub_api::DeviceStopReport> reports;
+    for (const config::NodeConfig& node : config.nodes) {
+      if (node.type != LiftLogic::kType) continue;
+      auto settings = parse_lift_settings(node);
+      if (!settings) {
+        reports.push_back({node.name, false, settings.error().message});
+        continue;
+      }
+      reports.push_back(stop_lift_drive(*settings, board, backend, timeout));
+    }
+    return reports;
   }
 
  private:

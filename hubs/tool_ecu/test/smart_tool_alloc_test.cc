@@ -24,13 +24,13 @@ using Wire = hub_msgs::SmartToolCommand::Wire;
 class RepeatingSource final : public runtime::CommandSource<Wire> {
  public:
   void set(const hub_msgs::SmartToolCommand& command) { command_ = command; }
-  Result<const Wire*> next() noexcept override {
+  Result<runtime::ReceivedCommand<Wire>> next() noexcept override {
     if (given_) {
       given_ = false;
-      return static_cast<const Wire*>(nullptr);
+      return runtime::ReceivedCommand<Wire>{};
     }
     given_ = true;
-    return &command_.wire();
+    return runtime::ReceivedCommand<Wire>{&command_.wire(), std::nullopt};
   }
 
  private:

@@ -30,22 +30,21 @@
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "dock_board_file.h"
 #include "dock_messages.h"
-#include "hub_process.h"
 
 namespace hubrt::kernel_test {
 namespace {
 
 using dock_ecu::DockCommand;
 using dock_ecu::DockState;
-using integration::HubProcess;
-using integration::HubProcessOptions;
 using std::chrono::microseconds;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 using std::chrono::steady_clock;
+using test_support::HubProcessOptions;
 
 // Generous: the guest runs under software emulation (TCG) on a 2-core host that may be busy with
 // sanitizer builds; hubd then takes seconds to start and a scheduling hiccup can take a second.
@@ -111,26 +110,11 @@ class HubdDockKernelTest : public ::testing::Test {
     chip_ = *chip;
     // Tests of this program share the chip: every one starts with no tool docked.
     for (std::size_t slot = 0; slot < kDockSlots.size(); ++slot) pull(chip_, slot, Pull::kDown);
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "kernel-test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
-    auto command_topic = dds::Topic<DockCommand>::create(*participant_, "/dock/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<DockCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<DockState>::create(*participant_, "/dock_ecu/dock/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
+    ASSERT_NO_FATAL_FAILURE(hub_.open("kernel-test-planner"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(command_writer_, "/dock/command"));
     // Keep every State: the debounce test must see each one, at 100 per second.
-    auto reader =
-        dds::Reader<DockState>::create(*participant_, *state_topic_, dds::Qos::ros2_default().keep_all());
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
+    ASSERT_NO_FATAL_FAILURE(
+        hub_.make_stream(states_, "/dock_ecu/dock/state", dds::Qos::ros2_default().keep_all()));
   }
 
   // Writes a board file for `chip` (into TMPDIR: the guest's root is read-only) and starts hubd
@@ -145,17 +129,15 @@ class HubdDockKernelTest : public ::testing::Test {
     options.hub = "dock_ecu";
     options.extra_args = {"--backend", "linux"};
     options.extra_args.insert(options.extra_args.end(), extra_args.begin(), extra_args.end());
-    auto hub = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message << "\nboard file " << board_->path() << ":\n" << board_->text();
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
+    ASSERT_NO_FATAL_FAILURE(hub_.start(options)) << "board file " << board_->path() << ":\n"
+                                                 << board_->text();
   }
 
   // Takes the next State into state_; false if none comes within `timeout`.
   bool next_state(Duration timeout) {
     const auto deadline = steady_clock::now() + timeout;
     do {
-      const Result<bool> taken = state_reader_->take_next(state_);
+      const Result<bool> taken = states_->reader().take_next(state_);
       if (taken.is_ok() && taken.value()) return true;
       std::this_thread::sleep_for(milliseconds(1));
     } while (steady_clock::now() < deadline);
@@ -189,18 +171,14 @@ class HubdDockKernelTest : public ::testing::Test {
   }
 
   // For failure messages: the last State and what hubd printed.
-  std::string context() const { return describe(state_.get()) + "\nhubd output:\n" + hub_->output(); }
+  std::string context() const { return describe(state_.get()) + "\nhubd output:\n" + hub_.output(); }
 
   GpioSimChip chip_;
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<DockCommand>> command_topic_;
-  std::optional<dds::Writer<DockCommand>> command_writer_;
-  std::optional<dds::Topic<DockState>> state_topic_;
-  std::optional<dds::Reader<DockState>> state_reader_;
+  dds::Writer<DockCommand>* command_writer_ = nullptr;
+  test_support::StateStream<DockState>* states_ = nullptr;
   dds::Sample<DockState> state_;
   std::optional<DockBoardFile> board_;
-  std::optional<HubProcess> hub_;
+  test_support::HubUnderTest hub_{kPatience};
 };
 
 TEST_F(HubdDockKernelTest, SlotsFollowThePullsOfTheirLines) {
@@ -403,10 +381,10 @@ TEST_F(HubdDockKernelTest, ReportsARemovedChipAndRecoversWhenItComesBack) {
   pull(expander->chip(), kSmartTool, Pull::kUp);
   EXPECT_TRUE(wait_for_occupancy(1U << kSmartTool)) << context();
 
-  ASSERT_TRUE(hub_->process().signal(SIGTERM));
-  auto status = hub_->process().wait(kPatience);
+  ASSERT_TRUE(hub_.hub().process().signal(SIGTERM));
+  auto status = hub_.hub().process().wait(kPatience);
   ASSERT_TRUE(status) << status.error().message;
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_->output();
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << hub_.output();
 }
 
 TEST_F(HubdDockKernelTest, ReportsALineHeldByAnotherProgramUntilItIsReleased) {

@@ -22,8 +22,8 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/kernel_test/environment.h"
+#include "hubrt/test_support/hub_under_test.h"
 
-#include "hub_process.h"
 #include "operator_messages.h"
 
 namespace hubrt::operator_hub {
@@ -72,37 +72,14 @@ class HubdOperatorKernelTest : public ::testing::Test {
     hub_file_ = (dir / "operator_hub.yaml").string();
     std::ofstream(hub_file_) << text;
 
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "kernel-test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
-    auto command_topic = dds::Topic<OperatorPanelCommand>::create(*participant_, "/operator_panel/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<OperatorPanelCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<OperatorPanelState>::create(*participant_, "/operator_hub/panel/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
-    auto reader = dds::Reader<OperatorPanelState>::create(*participant_, *state_topic_);
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
-
-    integration::HubProcessOptions options;
-    options.board = board_;
-    options.hub = hub_file_;
-    options.extra_args = {"--backend", "linux"};
-    auto hub = integration::HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
-    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
+    ASSERT_NO_FATAL_FAILURE(hub_.open("kernel-test-planner"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(command_writer_, "/operator_panel/command"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/operator_hub/panel/state"));
+    ASSERT_NO_FATAL_FAILURE(
+        hub_.start({.board = board_, .hub = hub_file_, .extra_args = {"--backend", "linux"}}));
   }
   void TearDown() override {
-    hub_.reset();
+    hub_.end_hub();  // before the reader it holds goes
     if (uinput_ != nullptr) libevdev_uinput_destroy(uinput_);
   }
 
@@ -119,7 +96,7 @@ class HubdOperatorKernelTest : public ::testing::Test {
         if (!command_writer_->write(c.wire()).is_ok()) return false;
         next_command += milliseconds(50);
       }
-      const Result<bool> taken = state_reader_->take_next(state_);
+      const Result<bool> taken = states_->reader().take_next(state_);
       if (taken.is_ok() && taken.value() && predicate(state_.get())) return true;
       std::this_thread::sleep_for(milliseconds(2));
     }
@@ -138,32 +115,28 @@ class HubdOperatorKernelTest : public ::testing::Test {
   libevdev_uinput* uinput_ = nullptr;
   std::string board_;
   std::string hub_file_;
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<OperatorPanelCommand>> command_topic_;
-  std::optional<dds::Writer<OperatorPanelCommand>> command_writer_;
-  std::optional<dds::Topic<OperatorPanelState>> state_topic_;
-  std::optional<dds::Reader<OperatorPanelState>> state_reader_;
+  dds::Writer<OperatorPanelCommand>* command_writer_ = nullptr;
+  test_support::StateStream<OperatorPanelState>* states_ = nullptr;
   dds::Sample<OperatorPanelState> state_;
-  std::optional<integration::HubProcess> hub_;
+  test_support::HubUnderTest hub_{kPatience};
 };
 
 TEST_F(HubdOperatorKernelTest, AUinputKeyboardTypesABadgeAndTheHubVerifiesIt) {
   ASSERT_TRUE(verify_until([](const OperatorPanelState& s) {
     return view(s).reader_open() && view(s).fresh_msg();
-  })) << hub_->output();
+  })) << hub_.output();
   type({KEY_0, KEY_0, KEY_0, KEY_4, KEY_1, KEY_2, KEY_3, KEY_4, KEY_5, KEY_6, KEY_ENTER});
   ASSERT_TRUE(verify_until([](const OperatorPanelState& s) {
     return view(s).operator_verified() && view(s).operator_name() == "Anna Svensson";
-  })) << hub_->output();
+  })) << hub_.output();
   EXPECT_EQ(view(state_.get()).last_badge_tag(), "9ad4c64a");
 
   type({KEY_9, KEY_9, KEY_9, KEY_ENTER});
   ASSERT_TRUE(verify_until([](const OperatorPanelState& s) { return view(s).badge_reads() == 2; }))
-      << hub_->output();
+      << hub_.output();
   EXPECT_EQ(view(state_.get()).last_badge_reason(), "unknown badge");
   EXPECT_EQ(view(state_.get()).operator_name(), "Anna Svensson");
-  EXPECT_EQ(hub_->output().find("0004123456"), std::string::npos) << hub_->output();
+  EXPECT_EQ(hub_.output().find("0004123456"), std::string::npos) << hub_.output();
 }
 
 }  // namespace

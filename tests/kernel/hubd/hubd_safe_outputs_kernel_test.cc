@@ -5,11 +5,11 @@
 //
 // gpio-sim gives a released line the level of its pull (gpio_sim_free() in
 // drivers/gpio/gpio-sim.c), so a line's level after its holder is gone is what the holder left as
-// the line's bias: --safe-outputs and the crash handler pull each output toward its safe level.
-// The gripper valve (safe: grab, active) shows the hazard without help: released by a killed
-// hubd, it drops to the default pull-down, i.e. the gripper opens. The lock valve (safe: closed,
-// inactive) is given a pull-up after the kill, standing in for a driver that keeps a released
-// line's last level (the valve stays energised, the changer open).
+// the line's bias: the running hubd requests every output with a pull toward its safe level
+// (issue 29), and so do --safe-outputs and the crash handler. So after `kill -9` both valves are
+// safe before ExecStopPost runs: the gripper valve (safe: grab, active), commanded open, is
+// pulled back up. Then the test stands in for a driver that does not keep a released line's pull
+// (the gripper dropped open, the lock valve energised, the changer open) before ExecStopPost.
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -33,15 +33,13 @@
 #include "hubrt/kernel_test/environment.h"
 #include "hubrt/kernel_test/gpio_sim.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_under_test.h"
 
-#include "hub_process.h"
 #include "rsp_messages.h"
 
 namespace hubrt::kernel_test {
 namespace {
 
-using integration::HubProcess;
-using integration::HubProcessOptions;
 using rsp_ecu::RspCommand;
 using rsp_ecu::RspState;
 using std::chrono::milliseconds;
@@ -87,28 +85,13 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
     ASSERT_TRUE(chip) << chip.error().message;
     chip_.emplace(std::move(*chip));
     write_board(name);
-    auto domain = test_support::TestDomain::acquire();
-    ASSERT_TRUE(domain) << domain.error().message;
-    domain_.emplace(std::move(*domain));
-    auto participant = dds::Participant::create(domain_->config(), "kernel-test-planner");
-    ASSERT_TRUE(participant) << participant.error().message;
-    participant_.emplace(std::move(*participant));
-    auto command_topic = dds::Topic<RspCommand>::create(*participant_, "/tool_changer/command");
-    ASSERT_TRUE(command_topic) << command_topic.error().message;
-    command_topic_.emplace(std::move(*command_topic));
-    auto writer = dds::Writer<RspCommand>::create(*participant_, *command_topic_);
-    ASSERT_TRUE(writer) << writer.error().message;
-    command_writer_.emplace(std::move(*writer));
-    auto state_topic = dds::Topic<RspState>::create(*participant_, "/rsp_ecu/rsp/state");
-    ASSERT_TRUE(state_topic) << state_topic.error().message;
-    state_topic_.emplace(std::move(*state_topic));
-    auto reader = dds::Reader<RspState>::create(*participant_, *state_topic_);
-    ASSERT_TRUE(reader) << reader.error().message;
-    state_reader_.emplace(std::move(*reader));
+    ASSERT_NO_FATAL_FAILURE(hub_.open("kernel-test-planner"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_writer(command_writer_, "/tool_changer/command"));
+    ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/rsp_ecu/rsp/state"));
   }
 
   void TearDown() override {
-    hub_.reset();  // kills a hubd still running, so the chip's lines are free to remove it
+    hub_.end_hub();  // kills a hubd still running, so the chip's lines are free to remove it
     if (!board_path_.empty()) std::filesystem::remove(board_path_);
   }
 
@@ -143,15 +126,8 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
   // pressure failure latched while it was off and commands the gripper open: the gripper line
   // then sits at its unsafe level.
   void start_hub_with_gripper_released() {
-    HubProcessOptions options;
-    options.board = board_path_;
-    options.hub = "rsp_ecu";
-    auto hub = HubProcess::start(*domain_, options);
-    ASSERT_TRUE(hub) << hub.error().message;
-    hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(state_reader_->wait_for_writers(1, kPatience)) << hub_->output();
-    // A command written before hubd's reader matched would be lost.
-    ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience)) << hub_->output();
+    // (start() also waits until hubd reads the commands: one written before would be lost.)
+    ASSERT_NO_FATAL_FAILURE(hub_.start({.board = board_path_, .hub = "rsp_ecu"}));
     // hubd requested the switch with a pull-down bias; air comes after that.
     ASSERT_TRUE(set_pull(chip(), kPressureLine, Pull::kUp));
     const auto deadline = steady_clock::now() + kPatience;
@@ -164,7 +140,7 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
       auto gripper = read_value(chip(), kGripperValveLine);
       released = gripper && *gripper == 0;
     }
-    ASSERT_TRUE(released) << "the gripper line never went low\nhubd output:\n" << hub_->output();
+    ASSERT_TRUE(released) << "the gripper line never went low\nhubd output:\n" << hub_.output();
     EXPECT_EQ(line(kLockValveLine), 0);
   }
 
@@ -191,24 +167,25 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
 
   std::optional<ScopedGpioSimChip> chip_;
   std::string board_path_;
-  std::optional<test_support::TestDomain> domain_;
-  std::optional<dds::Participant> participant_;
-  std::optional<dds::Topic<RspCommand>> command_topic_;
-  std::optional<dds::Writer<RspCommand>> command_writer_;
-  std::optional<dds::Topic<RspState>> state_topic_;
-  std::optional<dds::Reader<RspState>> state_reader_;
-  std::optional<HubProcess> hub_;
+  dds::Writer<RspCommand>* command_writer_ = nullptr;
+  test_support::StateStream<RspState>* states_ = nullptr;
+  test_support::HubUnderTest hub_{kPatience};
 };
 
 TEST_F(HubdSafeOutputsKernelTest, AfterKillNineTheUnitsExecStopPostLeavesBothValvesSafe) {
   ASSERT_NO_FATAL_FAILURE(start_hub_with_gripper_released());
-  ASSERT_TRUE(hub_->process().signal(SIGKILL));
-  auto ended = hub_->process().wait(kPatience);
+  ASSERT_TRUE(hub_.hub().process().signal(SIGKILL));
+  auto ended = hub_.hub().process().wait(kPatience);
   ASSERT_TRUE(ended) << ended.error().message;
   ASSERT_TRUE(ended->killed_by(SIGKILL)) << ended->describe();
-  // The hazard: with hubd gone the gripper line fell to its pull (the gripper opens), and a lock
+  // hubd's own requests pulled the lines toward their safe levels: released by the kill, they
+  // fell there before anything else ran (before issue 29 the gripper line dropped open here).
+  EXPECT_EQ(line(kGripperValveLine), 1) << "the gripper line did not fall back to grab";
+  EXPECT_EQ(line(kLockValveLine), 0);
+  // The hazard on a driver that forgets a released line's pull: the gripper drops open, and a lock
   // valve line that kept its level would keep the changer open.
-  EXPECT_EQ(line(kGripperValveLine), 0);
+  ASSERT_TRUE(set_pull(chip(), kGripperValveLine, Pull::kDown));
+  ASSERT_EQ(line(kGripperValveLine), 0);
   ASSERT_TRUE(set_pull(chip(), kLockValveLine, Pull::kUp));
   ASSERT_EQ(line(kLockValveLine), 1);
 
@@ -217,7 +194,7 @@ TEST_F(HubdSafeOutputsKernelTest, AfterKillNineTheUnitsExecStopPostLeavesBothVal
   test_support::Environment env{{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR},
                                 // Any DDS use would fail on this: --safe-outputs uses none.
                                 {"CYCLONEDDS_URI", "<CycloneDDS><Broken"}};
-  auto safe = test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, env);
+  auto safe = test_support::ChildProcess::start(test_support::hubd_path(), args, env);
   ASSERT_TRUE(safe) << safe.error().message;
   auto done = safe->wait(kPatience);
   ASSERT_TRUE(done) << done.error().message;
@@ -234,8 +211,8 @@ TEST_F(HubdSafeOutputsKernelTest, WithoutHubdRunningItExitsOneNamingEveryOutputI
   chip_.reset();  // the chip is gone: a board whose GPIO expander is unplugged
   const std::vector<std::string> args = exec_stop_post();
   ASSERT_FALSE(args.empty());
-  auto safe =
-      test_support::ChildProcess::start(HUBRT_HUBD_PATH, args, {{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR}});
+  auto safe = test_support::ChildProcess::start(test_support::hubd_path(), args,
+                                                {{"HUBRT_CONFIG_DIR", HUBRT_SOURCE_DIR}});
   ASSERT_TRUE(safe) << safe.error().message;
   auto done = safe->wait(kPatience);
   ASSERT_TRUE(done) << done.error().message;
@@ -248,13 +225,13 @@ TEST_F(HubdSafeOutputsKernelTest, WithoutHubdRunningItExitsOneNamingEveryOutputI
 
 TEST_F(HubdSafeOutputsKernelTest, AFatalSignalDrivesTheOutputsSafeBeforeHubdDies) {
   ASSERT_NO_FATAL_FAILURE(start_hub_with_gripper_released());
-  ASSERT_TRUE(hub_->process().signal(SIGSEGV));
-  auto ended = hub_->process().wait(kPatience);
+  ASSERT_TRUE(hub_.hub().process().signal(SIGSEGV));
+  auto ended = hub_.hub().process().wait(kPatience);
   ASSERT_TRUE(ended) << ended.error().message;
   // Without a sanitizer the default action kills it; under ASan its own handler (which the crash
   // handler hands over to) reports and exits non-zero.
   EXPECT_TRUE(ended->killed_by(SIGSEGV) || (ended->exit_code && *ended->exit_code != 0)) << ended->describe();
-  const std::string output = hub_->output();
+  const std::string output = hub_.output();
   EXPECT_NE(output.find("hubd: fatal signal: GPIO outputs driven to their safe levels"), std::string::npos)
       << output;
   // Released by the dead process, the lines keep the bias the handler gave them.

@@ -325,6 +325,38 @@ bool reflect_emit_typed_struct(FILE* out, const idl_struct_t* node, bool has_des
   return ok;
 }
 
-bool reflect_emit_typed_end(FILE* out) {
-  return fflush(out) == 0;
+/* The typed struct a State echoes: the type of its member `echo`, when both have typed classes. */
+static const idl_struct_t* echoed_command(const idl_struct_t* node) {
+  for (const idl_member_t* m = node->members; m != NULL; m = idl_next(m)) {
+    for (const idl_declarator_t* d = m->declarators; d != NULL; d = idl_next(d)) {
+      const void* t = strip(m->type_spec);
+      if (strcmp(idl_identifier(d), "echo") == 0 && idl_is_struct(t) && struct_ok(t, true)) return t;
+    }
+  }
+  return NULL;
+}
+
+bool reflect_emit_typed_pair(FILE* pairs, const idl_struct_t* node) {
+  const idl_struct_t* command = echoed_command(node);
+  char command_view[REFLECT_NAME_MAX];
+  char state[REFLECT_NAME_MAX];
+  if (command == NULL || !struct_ok(node, true)) return true;
+  if (!class_of(command, "View", command_view, sizeof command_view) ||
+      !class_of(node, "", state, sizeof state)) {
+    return false;
+  }
+  return fprintf(pairs, "  visit.template operator()<%s, %s>();\n", command_view, state) > 0;
+}
+
+bool reflect_emit_typed_end(FILE* out, const char* stem_id, const char* pairs) {
+  return fprintf(out,
+                 "namespace hubrt::msgs::typed {\n\n"
+                 "// Calls visit.template operator()<CommandView, State>() for every State type of this\n"
+                 "// file (a struct whose `echo` is a Command type), both with typed classes: for code that\n"
+                 "// handles every Command/State pair (the hostile command corpus, tests/hostile).\n"
+                 "template <class Visit>\n"
+                 "void for_each_command_state_pair_of_%s([[maybe_unused]] Visit&& visit) {\n%s}\n\n"
+                 "}  // namespace hubrt::msgs::typed\n",
+                 stem_id, pairs) > 0 &&
+         fflush(out) == 0;
 }

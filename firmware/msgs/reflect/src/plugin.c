@@ -19,6 +19,7 @@ typedef struct generator {
   FILE* header;
   FILE* source;
   FILE* typed;
+  FILE* pairs; /* the Command/State pair visitor's lines, in memory until the end */
   const char* idl_file;
   const char** c_names; /* structs emitted so far, for the list function */
   size_t c_name_count;
@@ -85,7 +86,8 @@ static void emit_struct(generator_t* gen, const idl_struct_t* node) {
     };
     if (!reflect_emit_header_struct(gen->header, &st) ||
         !reflect_emit_source_struct(gen->source, gen->idl_file, &st) ||
-        !reflect_emit_typed_struct(gen->typed, node, st.has_descriptor)) {
+        !reflect_emit_typed_struct(gen->typed, node, st.has_descriptor) ||
+        !reflect_emit_typed_pair(gen->pairs, node)) {
       gen->io_error = true;
     }
   }
@@ -144,9 +146,12 @@ static int run(generator_t* gen, const char* out_dir) {
   gen->header = fopen(header_path, "wb");
   gen->source = fopen(source_path, "wb");
   gen->typed = fopen(typed_path, "wb");
+  char* pairs = NULL;
+  size_t pairs_size = 0;
+  gen->pairs = open_memstream(&pairs, &pairs_size);
   const char** includes = NULL;
   size_t include_count = 0;
-  if (gen->header == NULL || gen->source == NULL || gen->typed == NULL) {
+  if (gen->header == NULL || gen->source == NULL || gen->typed == NULL || gen->pairs == NULL) {
     fprintf(stderr, "hubrt_idlc_reflect: cannot write %s or %s\n", header_path, source_path);
     gen->io_error = true;
   } else if (!collect_includes(gen->pstate, &includes, &include_count) ||
@@ -156,13 +161,17 @@ static int run(generator_t* gen, const char* out_dir) {
     gen->io_error = true;
   } else {
     visit(gen, gen->pstate->root);
+    const bool pairs_ok = fclose(gen->pairs) == 0;
+    gen->pairs = NULL;
     if (!gen->failed && !gen->io_error &&
-        (!reflect_emit_header_end(gen->header, gen->idl_file, stem_id) ||
+        (!pairs_ok || !reflect_emit_header_end(gen->header, gen->idl_file, stem_id) ||
          !reflect_emit_source_end(gen->source, stem_id, gen->c_names, gen->c_name_count) ||
-         !reflect_emit_typed_end(gen->typed))) {
+         !reflect_emit_typed_end(gen->typed, stem_id, pairs))) {
       gen->io_error = true;
     }
   }
+  if (gen->pairs != NULL) (void)fclose(gen->pairs);
+  free(pairs);
   free(includes);
   if (gen->header != NULL && fclose(gen->header) != 0) gen->io_error = true;
   if (gen->source != NULL && fclose(gen->source) != 0) gen->io_error = true;

@@ -197,10 +197,10 @@ Expected<void> smart_tool_arm(const YamlMap& root, StationConfig& out) {
   return {};
 }
 
-// RobotMoverState's actual_pose is a string<64> (hubs/mir_com/msg/robot_mover.idl): a longer
+// RobotMoverState's actual_pose is a string<64> (hubs/mir_com/msg/RobotMoverState.msg): a longer
 // position could never be reported.
 constexpr std::size_t kMaxPoseBytes = 64;
-// MirComState's fields that hold a RobotMoverState (hubs/mir_com/msg/mir_com.idl).
+// MirComState's fields that hold a RobotMoverState (hubs/mir_com/msg/MirComState.msg).
 constexpr std::array<std::string_view, 1> kMoverFields{"mover"};
 
 Expected<void> mobile_platform(const YamlMap& root, StationConfig& out) {

@@ -11,9 +11,10 @@ FakeLineDevice::FakeLineDevice(FakeGpio& gpio, FakeGpioChip& chip, unsigned line
 
 FakeLineDevice::~FakeLineDevice() {
   if (!alive()) return;
-  // Released lines keep their level (nothing drives them any more) and lose their bias request.
+  // Released lines keep their level (nothing drives them any more) and lose their bias request,
+  // except an output's pull toward its safe level, which then decides the level.
   line().use = FakeGpioChip::Use::kFree;
-  line().bias = Bias::kAsIs;
+  if (!keep_bias_on_release_) line().bias = Bias::kAsIs;
   settle();
 }
 
@@ -50,6 +51,11 @@ FakeDigitalOutput::FakeDigitalOutput(FakeGpio& gpio, FakeGpioChip& chip,
     : FakeLineDevice(gpio, chip, config.line, config.polarity), safe_(config.safe) {
   line().use = FakeGpioChip::Use::kOutput;
   line().output_level = config.initial != active_low_;
+  if (config.bias_toward_safe) {
+    // As the Linux backend's request flags (gpiod_output.cc): pull-up when the safe level is high.
+    line().bias = config.safe != active_low_ ? Bias::kPullUp : Bias::kPullDown;
+    keep_bias_on_release_ = true;
+  }
   settle(/*force=*/true);
 }
 

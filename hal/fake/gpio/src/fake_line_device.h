@@ -31,6 +31,11 @@ class FakeLineDevice {
   FakeGpioChip& chip_;
   unsigned line_;
   bool active_low_;
+  // An output requested with a bias (DigitalOutputConfig::bias_toward_safe) keeps it once
+  // released, as gpio-sim keeps a line's pull after its request is freed and sets the line to it
+  // (gpio-sim.c, gpio_sim_free), and as the Pi's pinctrl turns a released line into an input with
+  // its pull: the line falls to its safe level when the process that drove it is gone.
+  bool keep_bias_on_release_ = false;
 
  private:
   std::uint32_t generation_;

@@ -31,10 +31,12 @@ struct DigitalOutputConfig {
   Polarity polarity = Polarity::kActiveHigh;
   bool initial = false;  // logical level driven when the line is opened
   bool safe = false;     // logical level driven by write_safe() (fault, shutdown)
-  // Also pull the line toward its safe level (Linux: the request's bias flag), so that it stays
-  // there once this process releases it, on drivers that keep a released line's bias (gpio-sim;
-  // the Raspberry Pi's pinctrl turns a released line into an input with its pull). For
-  // `hubd --safe-outputs`, which exits after driving the outputs; the fake backend ignores it.
+  // Also pull the line toward its safe level (Linux: the request's bias flag, ignored by a chip
+  // without bias support), so that it falls there once this process releases it — killed, crashed
+  // — on drivers that keep a released line's bias (gpio-sim; the Raspberry Pi's pinctrl turns a
+  // released line into an input with its pull), before `hubd --safe-outputs` runs. Every output a
+  // hub opens from its board asks for it (hubs/common/board_devices.h), and --safe-outputs does.
+  // The fake backend models it: a released output keeps the pull and settles to it.
   bool bias_toward_safe = false;
 };
 

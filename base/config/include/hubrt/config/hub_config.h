@@ -48,6 +48,10 @@ struct HubConfig {
   double rate_hz = 10.0;
   Duration period{};
   Duration command_timeout{};
+  // How far this hub's and the planner's clocks are trusted to agree (`clock_tolerance_ms`): a
+  // command's age comes from its source timestamp (runtime/command_age.h). std::nullopt
+  // (`clock_tolerance_ms: none`): the clocks are not synced, ages are not judged.
+  std::optional<Duration> clock_tolerance = std::chrono::milliseconds(50);
   // At most one State per node published at once (outside the heartbeat) per this interval.
   Duration immediate_state_interval = std::chrono::milliseconds(10);
   Layout layout = Layout::kNodeType;
@@ -59,8 +63,8 @@ struct HubConfig {
 };
 
 // Loads and validates a hub configuration. Errors name file:line:col, the key and the problem.
-// Checks: known keys, rate in (0, 1000] Hz, timeout at least two periods, immediate-State interval
-// in [1, 1000] ms, names usable in ROS
+// Checks: known keys, rate in (0, 1000] Hz, timeout at least two periods, clock tolerance 'none'
+// or [0, 1000] ms and below the timeout, immediate-State interval in [1, 1000] ms, names usable in ROS
 // topic names, node names unique, layout known. Node settings are checked by the hub type.
 Expected<HubConfig> load_hub_config(const std::string& path);
 Expected<HubConfig> parse_hub_config(const YamlMap& root);

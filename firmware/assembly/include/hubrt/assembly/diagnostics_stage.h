@@ -27,7 +27,7 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 24;
+  static constexpr std::size_t kMaxValues = 28;
 
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as
@@ -83,7 +83,19 @@ class DiagnosticsStage final : public runtime::CycleStage {
                    Duration immediate_state_interval, const std::atomic<std::uint64_t>* log_lines_dropped);
   void fill_hub_status(const Instant& now) noexcept;
   void fill_node_status(std::size_t index, const runtime::NodeBase& node) noexcept;
+  // The commands a node (or the hub-level command node) did not follow, and its clock offsets.
+  template <class Add>
+  static void add_command_counts(const runtime::NodeBase& node, Add&& add) noexcept {
+    add("commands_rejected", node.rejected());
+    add("commands_stale", node.commands_stale());
+    if (const runtime::CommandAgeJudge* ages = node.command_ages(); ages != nullptr && ages->offset_seen()) {
+      add("clock_offset_ms", to_seconds(ages->last_offset()) * 1e3);
+      add("clock_offset_max_ms", to_seconds(ages->largest_offset()) * 1e3);
+    }
+  }
   void set_value(std::size_t status, std::size_t slot, const char* key, const char* value) noexcept;
+  // The nodes' clock tolerance in ms, or "none" (clocks not synced).
+  std::string_view clock_tolerance_text() noexcept;
 
   dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic_;
   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer_;
@@ -94,6 +106,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
   Duration command_timeout_;
   Duration immediate_state_interval_;
   const std::atomic<std::uint64_t>* log_lines_dropped_;
+  runtime::TextBuffer<24> tolerance_text_;
   Time next_due_{};
   bool started_ = false;
   Time started_at_{};

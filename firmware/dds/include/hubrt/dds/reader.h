@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <dds/dds.h>
 
@@ -52,6 +53,15 @@ class UntypedReader {
   // or use Sample<T> / UntypedSample, which do.
   // Errors: Cyclone's code (e.g. kInvalidArgument for a deleted reader).
   Result<bool> take_next(void* sample, SampleInfo* info = nullptr) noexcept;
+
+  // Takes the oldest valid sample as it was serialized — the 4-byte encapsulation header and the
+  // payload (Cyclone 0.10.2: dds_takecdr's serdata, ddsi_serdata_size and ddsi_serdata_to_ser;
+  // src/core/ddsi/src/ddsi_serdata_default.c: the CDR header and the payload as received, padding
+  // included, byte-swapped by Cyclone's check only when the writer was big-endian) — into `out`
+  // (resized to it), without deserialising it. Invalid samples are consumed and skipped.
+  // Returns true if a sample was taken. Allocates when `out` must grow: not for the cycle.
+  // Errors: Cyclone's code.
+  Result<bool> take_serialized(std::vector<std::uint8_t>& out, SampleInfo* info = nullptr);
 
   // Number of writers currently matched. Errors: Cyclone's code.
   [[nodiscard]] Result<std::uint32_t> matched_writers() const noexcept;

@@ -63,9 +63,10 @@ struct SecurityRefusalCounts {
 };
 
 // Installs the counting log sink (once per process; later calls do nothing) and counts from then
-// on. Refusals are logged on stderr rate-limited: the first of each kind at once, then at most one
-// line per kind every 10 s saying how many more there were; every other Cyclone message is written
-// as Cyclone's default sink writes it. Call before the first participant. Thread-safe.
+// on. Refusals are logged rate-limited where Cyclone's lines go (stderr, or what
+// forward_cyclone_log set: hubd's bounded log queue): the first of each kind at once, then at most
+// one line per kind every 10 s saying how many more there were; every other Cyclone message is
+// written as Cyclone's default sink writes it. Call before the first participant. Thread-safe.
 void count_security_refusals() noexcept;
 
 // Whether count_security_refusals() was called in this process.

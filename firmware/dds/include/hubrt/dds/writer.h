@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <dds/dds.h>
@@ -56,6 +57,22 @@ class UntypedWriter {
   // reliable write stayed blocked (never with keep-last); kInvalidArgument for a deleted writer or
   // a sample that does not serialise (e.g. an enum out of range).
   Status write(const void* sample) noexcept;
+  // As write(), with `source_time` as the sample's source timestamp instead of this host's clock
+  // now: for tools that test how a reader judges a command's age (hubctl send --stamp-offset).
+  // Cyclone 0.10.2 has no dds_writecdr_ts: the pooled sample is stamped by hand and written with
+  // dds_forwardcdr, which keeps the serdata's timestamp where dds_writecdr overwrites it with
+  // dds_time() (src/core/ddsc/src/dds_write.c, dds_writecdr / dds_forwardcdr); without a pool,
+  // dds_write_ts. Errors: as write(); kInvalidArgument for a negative time.
+  Status write(const void* sample, WallTime source_time) noexcept;
+
+  // Sends `serialized` — a sample as it was on the wire: the 4-byte encapsulation header and the
+  // payload, what UntypedReader::take_serialized gives and an MCAP "cdr" message holds — as it is,
+  // without decoding it into a struct and encoding it again. Cyclone checks it first as it checks a
+  // sample from the network (ddsi_serdata_from_ser_iov: header, and dds_stream_normalize: every
+  // length and enum within the type). For tools replaying recordings: allocates a serdata per call.
+  // Errors: kInvalidArgument for bytes Cyclone refuses; kFailedPrecondition for a keyed topic or
+  // one whose sertype was not found (no write pool); Cyclone's code of the write.
+  Status write_serialized(std::span<const std::uint8_t> serialized) noexcept;
 
   // Number of readers currently matched. Errors: Cyclone's code (deleted writer).
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept;
@@ -134,6 +151,7 @@ class Writer {
 
   // As UntypedWriter::write; `sample` may point its strings into caller-owned fixed buffers.
   Status write(const T& sample) noexcept { return writer_.write(&sample); }
+  Status write(const T& sample, WallTime source_time) noexcept { return writer_.write(&sample, source_time); }
   [[nodiscard]] Result<std::uint32_t> matched_readers() const noexcept { return writer_.matched_readers(); }
   std::uint64_t take_new_readers() noexcept { return writer_.take_new_readers(); }
   [[nodiscard]] bool has_matched_readers() const noexcept { return writer_.has_matched_readers(); }

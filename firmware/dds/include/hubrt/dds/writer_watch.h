@@ -17,12 +17,15 @@
 #include "hubrt/dds/entity.h"
 #include "hubrt/dds/guid.h"
 #include "hubrt/dds/participant.h"
+#include "hubrt/dds/qos.h"
 
 namespace hubrt::dds {
 
 // One writer of a watched topic that belongs to another participant.
 struct WatchedWriter {
   std::string topic_name;  // DDS name, e.g. "rt/dock_ecu/dock/state"
+  std::string type_name;   // DDS name, e.g. "hub_msgs::msg::dds_::DockState_"
+  OfferedQos qos;          // what the writer offers (reliability, durability, history, ...)
   Guid key;
   Guid participant_key;
   // Cyclone publishes these as properties of every participant's QoS ("__Hostname", "__Pid",

@@ -33,22 +33,25 @@ class DdsCommandSource final : public runtime::CommandSource<Command> {
   explicit DdsCommandSource(dds::Reader<Command> reader, std::shared_ptr<std::atomic<bool>> arrived = nullptr)
       : reader_(std::move(reader)), arrived_(std::move(arrived)) {}
 
-  Result<const Command*> next() noexcept override {
+  // Each command comes with its DDS source timestamp (the writer's clock: SampleInfo::source_time).
+  Result<runtime::ReceivedCommand<Command>> next() noexcept override {
     // Nothing arrived since the last take found the reader empty: no take (Cyclone's dds_take
     // locks the reader and its history cache to find nothing, ~650 instructions every periodic
     // cycle). The listener runs after the sample is in the reader (Cyclone 0.10.2
     // dds_rhc_default.c, dds_rhc_default_store: dds_reader_data_available_cb once the history
     // cache is unlocked), so a command seen by no flag yet is taken in the command step its
     // listener's wake starts.
-    if (!may_have_command()) return static_cast<const Command*>(nullptr);
+    if (!may_have_command()) return runtime::ReceivedCommand<Command>{};
     // Cleared before the take: a command arriving during or after it sets the flag again.
     if (arrived_) arrived_->store(false, std::memory_order_relaxed);
-    const Result<bool> taken = reader_.take_next(sample_);
+    dds::SampleInfo info;
+    const Result<bool> taken = reader_.take_next(sample_, &info);
     if (!taken.is_ok() || taken.value()) {
       if (arrived_) arrived_->store(true, std::memory_order_relaxed);  // more may follow
     }
     if (!taken.is_ok()) return taken.status();
-    return taken.value() ? &sample_.get() : static_cast<const Command*>(nullptr);
+    if (!taken.value()) return runtime::ReceivedCommand<Command>{};
+    return runtime::ReceivedCommand<Command>{&sample_.get(), info.source_time};
   }
   [[nodiscard]] bool may_have_command() const noexcept override {
     return !arrived_ || arrived_->load(std::memory_order_acquire);

@@ -30,22 +30,25 @@
 
 namespace hubrt::hub_api {
 
-// Hands one fragment per step to a node.
+// Hands one fragment per step to a node, with the source timestamp of the hub command it came
+// from: the node judges its age as the hub-level node judged the hub command's.
 template <class Command>
 class MailboxSource final : public runtime::CommandSource<Command> {
  public:
-  void post(const Command& fragment) noexcept {
+  void post(const Command& fragment, std::optional<WallTime> source_time) noexcept {
     pending_ = fragment;
+    source_time_ = source_time;
     has_pending_ = true;
   }
-  Result<const Command*> next() noexcept override {
-    if (!has_pending_) return static_cast<const Command*>(nullptr);
+  Result<runtime::ReceivedCommand<Command>> next() noexcept override {
+    if (!has_pending_) return runtime::ReceivedCommand<Command>{};
     has_pending_ = false;
-    return &pending_;
+    return runtime::ReceivedCommand<Command>{&pending_, source_time_};
   }
 
  private:
   Command pending_{};
+  std::optional<WallTime> source_time_;
   bool has_pending_ = false;
 };
 
@@ -62,8 +65,8 @@ namespace detail {
 class Route {
  public:
   virtual ~Route() = default;
-  // Posts the node's fragment of `hub_command` to the node.
-  virtual void distribute(const void* hub_command) noexcept = 0;
+  // Posts the node's fragment of `hub_command`, written at `source_time`, to the node.
+  virtual void distribute(const void* hub_command, std::optional<WallTime> source_time) noexcept = 0;
   // Copies the node's State into its field of `hub_state` (pointers keep pointing into the node).
   virtual void collect(void* hub_state) const noexcept = 0;
 };
@@ -80,13 +83,13 @@ class NodeRoute final : public Route {
   MailboxSource<Command>& source() noexcept { return source_; }
   CollectedSink<State>& sink() noexcept { return sink_; }
 
-  void distribute(const void* hub_command) noexcept override {
+  void distribute(const void* hub_command, std::optional<WallTime> source_time) noexcept override {
     Command fragment{};
     std::memcpy(&fragment, static_cast<const std::byte*>(hub_command) + command_offset_, sizeof fragment);
     if (msgs::typed::view(fragment.target_type).empty()) msgs::typed::assign(fragment.target_type, type_);
     if (msgs::typed::view(fragment.target_name).empty())
       msgs::typed::assign(fragment.target_name, node_name_);
-    source_.post(fragment);
+    source_.post(fragment, source_time);
   }
   void collect(void* hub_state) const noexcept override {
     std::memcpy(static_cast<std::byte*>(hub_state) + state_offset_, &node_->state().wire(), sizeof(State));
@@ -113,8 +116,12 @@ class HubLevelLogic {
 
   explicit HubLevelLogic(std::vector<std::unique_ptr<Route>>& routes) : routes_(&routes) {}
 
-  // The hub-level node's tracker: fragments go out only in cycles where a hub command arrived.
-  void watch(const runtime::CommandTracker& tracker) noexcept { tracker_ = &tracker; }
+  // The hub-level node's tracker and its last valid command's times: fragments go out only in
+  // steps where a hub command arrived, stamped with its source timestamp.
+  void watch(const runtime::CommandTracker& tracker, const runtime::CommandTimes& last_valid) noexcept {
+    tracker_ = &tracker;
+    last_valid_ = &last_valid;
+  }
 
   bool validate(const Command& /*command*/, runtime::Problem& /*problem*/) const noexcept { return true; }
   void read_inputs(Time /*now*/) noexcept {}
@@ -125,8 +132,9 @@ class HubLevelLogic {
   // last fragment every cycle would keep a node commanded one timeout longer than its hub.
   void update(const Command* in_force, Time now) noexcept {
     if (in_force == nullptr) return;
-    if (tracker_ != nullptr && tracker_->since_last_command(now) != Duration::zero()) return;
-    for (const auto& route : *routes_) route->distribute(&in_force->wire());
+    if (tracker_ != nullptr && tracker_->last_taken() != now) return;
+    const std::optional<WallTime> source = last_valid_ != nullptr ? last_valid_->source : std::nullopt;
+    for (const auto& route : *routes_) route->distribute(&in_force->wire(), source);
   }
   void reset() noexcept {}
   void report(State& state, runtime::ErrorList& /*errors*/, Time /*now*/) noexcept {
@@ -137,6 +145,7 @@ class HubLevelLogic {
  private:
   std::vector<std::unique_ptr<Route>>* routes_;
   const runtime::CommandTracker* tracker_ = nullptr;
+  const runtime::CommandTimes* last_valid_ = nullptr;
 };
 
 // The distributor before the nodes, the collector after them; owns the hub-level DDS entities.
@@ -156,7 +165,7 @@ class HubLayoutStage final : public runtime::CycleStage {
   void start(runtime::NodeOptions options) {
     node_ = std::make_unique<runtime::Node<HubLevelLogic<HubTypes>>>(
         std::move(options), HubLevelLogic<HubTypes>(routes_), source_, sink_, message_ops<HubCommand>());
-    node_->logic().watch(node_->tracker());
+    node_->logic().watch(node_->tracker(), node_->last_valid_command());
   }
   // The hub State's error_list carries the hub-wide alerts too (call after start()).
   void watch_alerts(const runtime::HubAlerts& alerts) noexcept { node_->watch_alerts(&alerts); }
@@ -164,6 +173,9 @@ class HubLayoutStage final : public runtime::CycleStage {
   [[nodiscard]] const runtime::Node<HubLevelLogic<HubTypes>>& hub_node() const noexcept { return *node_; }
 
   void before_nodes(const Instant& now) noexcept override { took_effect_ = node_->advance(now); }
+  void note_late(const Instant& now, Duration late, Time discard_until) noexcept override {
+    node_->note_late(now, late, discard_until);
+  }
   void after_nodes(const Instant& now, bool publish_all, bool nodes_took_effect) noexcept override {
     node_->rebuild_state(now.mono);
     // The hub State is what goes on the wire, so the budget of immediate States applies to it.
@@ -174,6 +186,7 @@ class HubLayoutStage final : public runtime::CycleStage {
     }
   }
   [[nodiscard]] std::uint64_t states_deferred() const noexcept override { return node_->states_deferred(); }
+  [[nodiscard]] const runtime::NodeBase* hub_level_node() const noexcept override { return node_.get(); }
 
  private:
   dds::Topic<HubCommand> command_topic_;
@@ -261,6 +274,7 @@ class NodeWiring {
     runtime::NodeOptions options;
     options.name = node.name;
     options.command_timeout = context_.config.command_timeout;
+    options.clock_tolerance = context_.config.clock_tolerance;
     options.addressing = runtime::Addressing::kRejectOthers;
     // Its State only goes into the hub State, whose own budget bounds what goes on the wire; a
     // budget here would only keep the embedded header from being restamped.
@@ -281,6 +295,7 @@ class NodeWiring {
     runtime::NodeOptions options;
     options.name = context_.config.name;
     options.command_timeout = context_.config.command_timeout;
+    options.clock_tolerance = context_.config.clock_tolerance;
     options.addressing = runtime::Addressing::kRejectOthers;  // the topic is this hub's own
     options.immediate_state_interval = context_.config.immediate_state_interval;
     options.log = context_.log;

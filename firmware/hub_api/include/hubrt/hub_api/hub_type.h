@@ -6,7 +6,9 @@
 
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <spdlog/logger.h>
 
@@ -37,6 +39,13 @@ struct HubContext {
   Subscriptions& subscriptions;
 };
 
+// What HubType::stop_devices() did for one device.
+struct DeviceStopReport {
+  std::string device;  // the board's device name, e.g. "lift_drive"
+  bool stopped = false;
+  std::string message;  // what was done, or why it could not be
+};
+
 class HubType {
  public:
   virtual ~HubType() = default;
@@ -52,6 +61,16 @@ class HubType {
   // Opens the devices and DDS endpoints and adds the nodes to `hub`. Errors name the node and the
   // device or topic that failed.
   [[nodiscard]] virtual Expected<void> build(const HubContext& context, runtime::Hub& hub) const = 0;
+  // Best effort, once the hub's process has ended (`hubd --safe-outputs`, the unit's
+  // ExecStopPost): tells the devices that would go on with their last command by themselves — a
+  // motor drive on a bus — to stop, each call bounded by `timeout`. GPIO outputs are not this
+  // function's: hubd drives them to their safe levels itself. None by default.
+  [[nodiscard]] virtual std::vector<DeviceStopReport> stop_devices(const config::HubConfig& /*config*/,
+                                                                   const hal::BoardConfig& /*board*/,
+                                                                   hal::Backend& /*backend*/,
+                                                                   Duration /*timeout*/) const {
+    return {};
+  }
 };
 
 }  // namespace hubrt::hub_api

@@ -74,6 +74,7 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
   runtime::NodeOptions options;
   options.name = node.name;
   options.command_timeout = context.config.command_timeout;
+  options.clock_tolerance = context.config.clock_tolerance;
   options.addressing = runtime::Addressing::kIgnoreOthers;
   options.immediate_state_interval = context.config.immediate_state_interval;
   options.log = context.log;

@@ -1,6 +1,7 @@
-// Drift between the ROS 2 interface package (.msg) and the IDL the hubs really publish. The IDL
-// side is taken from the reflection tables, i.e. from what idlc itself parsed and laid out, not
-// from a second reading of the IDL text that could disagree with idlc.
+// Differences between a .msg and the IDL type idlc made of the IDL generated from it
+// (msg_to_idl.h): the layout check of the generated IDL (test/idl_mapping_test.cc). The IDL side
+// is taken from the reflection tables, i.e. from what idlc itself parsed and laid out, not from a
+// second reading of the IDL text that could disagree with idlc.
 #pragma once
 
 #include <span>
@@ -22,7 +23,8 @@ std::string msg_type_of(const FieldInfo& field);
 // (within the packages `msgs` covers; an IDL type of another package is reported as having no
 // .msg package); per type, field count, names and order, and types — primitive, string bound,
 // sequence / bounded sequence / array / single value, and nested type names
-// (builtin_interfaces/Time <-> builtin_interfaces::msg::dds_::Time_). Thread-safe.
+// (builtin_interfaces/Time <-> builtin_interfaces::msg::dds_::Time_); a .msg without fields
+// matches rosidl's one placeholder member. Thread-safe.
 std::vector<std::string> find_drift(std::span<const ros::MsgSpec> msgs,
                                     std::span<const TypeInfo* const> idl_types);
 

@@ -1,7 +1,8 @@
 // ROS 1 message definitions: what a ROS 1 publisher announces in its connection header
-// (`message_definition`, `md5sum`, `type`), derived here from the ROS 2 interface package
-// (ros2/hub_msgs/msg/*.msg) so that the bridge knows, for every hub type, the one ROS 1 definition
-// it accepts — with no file per type to keep in step.
+// (`message_definition`, `md5sum`, `type`), derived here from the ROS 2 .msg texts of the hub
+// types (hubrt/msgs/definitions.h: those built into the program, the hub folders' msg/*.msg) so
+// that the bridge knows, for every hub type, the one ROS 1 definition it accepts — with no file per
+// type to keep in step.
 //
 // The ROS 1 forms follow genmsg (the ROS 1 message generator, python3-genmsg: gentools.py
 // compute_md5_text / compute_full_text, msg_loader.py): the md5 text lists the constants
@@ -13,11 +14,13 @@
 
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "hubrt/base/status.h"
+#include "hubrt/msgs/definitions.h"
 #include "hubrt/msgs/type_info.h"
 
 namespace hubrt::ros1 {
@@ -61,9 +64,15 @@ Expected<Messages> parse_full_definition(std::string_view text, std::string_view
 // Duration -> time and duration, string constants unquoted, default values dropped. Thread-safe.
 Expected<Message> ros1_from_ros2_msg(std::string_view text, std::string_view full_name);
 
-// Every <root>/<pkg>/msg/*.msg (a ROS 2 interface tree such as ros2/) in its ROS 1 form.
+// Every <root>/<pkg>/msg/*.msg (a ROS 2 interface tree) in its ROS 1 form.
 // Errors: kNotFound for a missing root, parse errors naming file and line.
 Expected<Messages> load_ros2_tree_as_ros1(const std::filesystem::path& root);
+
+// Every hub_msgs definition of `definitions` (msgs::msg_definitions(): the .msg texts built into
+// the program) in its ROS 1 form. The standard ROS 2 types there are left out: builtin_interfaces
+// maps to ROS 1's time and duration, and ROS 1 has std_msgs of its own. Errors: parse errors
+// naming the type and line. Thread-safe.
+Expected<Messages> load_definitions_as_ros1(std::span<const msgs::MsgDefinition> definitions);
 
 // The ROS 1 .msg text of one message (constants, then fields; no comments).
 std::string msg_text(const Message& message);

@@ -58,7 +58,9 @@ class CycleRunner {
   // runs at once (at start = clock.now()); cycle k is due at start + k·period whatever the earlier
   // cycles took. When a step ran past one or more further deadlines, those deadlines count as
   // overruns in hub.stats() and ONE cycle runs at once, then the schedule goes on at the next
-  // deadline still ahead (no burst of catch-up cycles). A wake runs a command step at
+  // deadline still ahead (no burst of catch-up cycles). When the runner comes back more than a
+  // period after a deadline (the process was stopped or paused, a step blocked), it tells the hub
+  // first (Hub::note_late), before any step takes a command. A wake runs a command step at
   // clock.now() between cycles. `clock` reads the time the timer waits on (SystemClock for
   // create(), the ManualClock of a ManualCycleTimer).
   // Errors: kInvalidArgument for a non-positive period; kIo for a failing system call.

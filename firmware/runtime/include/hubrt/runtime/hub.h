@@ -32,9 +32,15 @@ class CycleStage {
   // Once, after the nodes entered their safe state on the way out: e.g. the simulation bridge
   // publishes the outputs a last time, so that watchers see them safe.
   virtual void after_safe_state(const Instant& /*now*/) noexcept {}
+  // The cycle could not run until `now`, `late` past its deadline (Hub::note_late): a stage that
+  // takes commands itself (the hub layout's hub-level command) drops what queued meanwhile.
+  virtual void note_late(const Instant& /*now*/, Duration /*late*/, Time /*discard_until*/) noexcept {}
 
   // Immediate States this stage held back for its budget (the hub layout's hub State).
   [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept { return 0; }
+  // The node that takes the hub-level command, when the stage has one (the hub layout): its
+  // rejections, stale commands and clock offsets go into /diagnostics with the hub's.
+  [[nodiscard]] virtual const NodeBase* hub_level_node() const noexcept { return nullptr; }
 };
 
 struct CycleStats {
@@ -42,7 +48,8 @@ struct CycleStats {
   std::uint64_t command_steps = 0;  // steps triggered by arriving commands
   std::uint64_t overruns = 0;       // periods missed because a cycle ran late
   std::uint64_t publish_errors = 0;
-  Duration last_cycle{0};  // execution time of the last periodic cycle
+  Duration longest_late{0};  // the longest the cycle was held past a deadline (note_late)
+  Duration last_cycle{0};    // execution time of the last periodic cycle
   Duration max_cycle{0};
 };
 
@@ -76,6 +83,12 @@ class Hub {
   void command_step(const Instant& now) noexcept;
   // Overruns observed by the timer (periods that passed without a cycle).
   void count_overruns(std::uint64_t missed) noexcept { stats_.overruns += missed; }
+  // The cycle could not run until `now`, `late` past its deadline (CycleRunner calls this when
+  // that is more than a period: the process was stopped or paused, or a step blocked). Before any
+  // step takes a command: every node (and stage) whose command timeout `late` exceeds drains what
+  // queued meanwhile and discards every command it takes until the hub has caught up, i.e. for
+  // max(kStallSettle, one period) from `now` (command_age.h).
+  void note_late(const Instant& now, Duration late) noexcept;
   // Lifecycle phase: the hub type is about to open its nodes' devices (before the first
   // add_node()). The first cycle ends the phase: from then on the hub's state is its nodes' worst.
   void begin_opening_devices() noexcept;
@@ -92,6 +105,8 @@ class Hub {
   [[nodiscard]] NodeBase* find_node(std::string_view name) const noexcept;
   // Immediate States held back by every node's and stage's budget, since start.
   [[nodiscard]] std::uint64_t states_deferred() const noexcept;
+  // The hub layout's hub-level command node (CycleStage::hub_level_node), or null.
+  [[nodiscard]] const NodeBase* hub_level_node() const noexcept;
 
   // Hub-wide conditions every node reports (set by a stage before the nodes step).
   [[nodiscard]] HubAlerts& alerts() noexcept { return alerts_; }

@@ -22,7 +22,7 @@
 // operational).
 //
 // The numbers are on the wire (StateHeader.lifecycle; the LIFECYCLE_* constants of
-// ros2/hub_msgs/msg/StateHeader.msg): never renumber them.
+// firmware/msgs/msg/StateHeader.msg): never renumber them.
 #pragma once
 
 #include <cstdint>

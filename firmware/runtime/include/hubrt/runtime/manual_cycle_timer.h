@@ -22,6 +22,9 @@ class ManualCycleTimer final : public CycleTimer {
   void wake_at(Time at);
   void request_stop_at(Time at);
   void signal_at(Time at, int signal);
+  // The process is stopped at `at` for `length` (SIGSTOP and SIGCONT, a VM pause): a wait that
+  // would sleep past `at` comes back at `at + length`, its deadline long gone.
+  void pause_at(Time at, Duration length);
 
   // Waits "until" the earlier of `deadline` and the next scheduled event by setting the clock
   // there; an event already pending (wake(), request_stop(), or scheduled at or before now) ends
@@ -39,6 +42,7 @@ class ManualCycleTimer final : public CycleTimer {
     bool wake = false;
     bool stop = false;
     int signal = 0;
+    Duration pause{0};
   };
   void schedule(const Scheduled& event);
 

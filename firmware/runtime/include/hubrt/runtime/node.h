@@ -19,6 +19,9 @@
 #include "hubrt/base/time.h"
 #include "hubrt/msgs/typed.h"
 #include "hubrt/runtime/arena.h"
+#include "hubrt/runtime/command_age.h"
+#include "hubrt/runtime/command_observer.h"
+#include "hubrt/runtime/command_reports.h"
 #include "hubrt/runtime/command_tracker.h"
 #include "hubrt/runtime/error_list.h"
 #include "hubrt/runtime/escaped_text.h"
@@ -78,6 +81,10 @@ struct NodeOptions {
   // holding at most `immediate_state_burst` (ImmediateStateBudget).
   Duration immediate_state_interval = kDefaultImmediateStateInterval;
   std::uint32_t immediate_state_burst = kDefaultImmediateStateBurst;
+  // How far the planner's and the hub's clocks agree (command_age.h); std::nullopt: not synced.
+  ClockTolerance clock_tolerance = kDefaultClockTolerance;
+  // Told of every command taken (may be null; must outlive the node).
+  CommandObserver* command_observer = nullptr;
   std::shared_ptr<spdlog::logger> log;
 };
 
@@ -111,6 +118,15 @@ class NodeBase {
   [[nodiscard]] virtual std::string_view first_error() const noexcept = 0;
   [[nodiscard]] virtual std::uint64_t published() const noexcept = 0;
   [[nodiscard]] virtual std::uint64_t rejected() const noexcept = 0;
+  // Commands dropped as too old to act, or as queued during a stall (command_age.h).
+  [[nodiscard]] virtual std::uint64_t commands_stale() const noexcept { return 0; }
+  // The judge of the commands' ages, with the clock offsets it saw (command_age.h); null for a
+  // node that takes no commands.
+  [[nodiscard]] virtual const CommandAgeJudge* command_ages() const noexcept { return nullptr; }
+  // The cycle could not run until `now`, `late` past its deadline (Hub::note_late). When that is
+  // longer than the command timeout, what queued meanwhile is drained now and every command taken
+  // before `discard_until` is discarded: only one that arrives after the hub caught up acts.
+  virtual void note_late(const Instant& /*now*/, Duration /*late*/, Time /*discard_until*/) noexcept {}
   // Changes whose immediate State the budget held back (they went out with a later State).
   [[nodiscard]] virtual std::uint64_t states_deferred() const noexcept = 0;
 
@@ -150,12 +166,14 @@ class Node final : public NodeBase {
         sink_(sink),
         ops_(ops),
         tracker_(options_.command_timeout),
+        ages_(options_.command_timeout, options_.clock_tolerance),
         budget_(options_.immediate_state_interval, options_.immediate_state_burst),
         arenas_{Arena(kEchoArenaBytes), Arena(kEchoArenaBytes)} {
     static_assert(
         std::find(Logic::kActions.begin(), Logic::kActions.end(), kResetAction) != Logic::kActions.end(),
         "every node type accepts the reset action");
     if (!options_.log) options_.log = spdlog::default_logger();
+    reports_.emplace(options_.name, options_.command_timeout, options_.log.get());
     // The configuration checks node names (a ROS name token of at most kMaxCommandString bytes).
     state_.set_name(options_.name);
   }
@@ -169,6 +187,9 @@ class Node final : public NodeBase {
   [[nodiscard]] const State& state() const noexcept { return state_; }
   [[nodiscard]] const ErrorList& errors() const noexcept { return errors_; }
   [[nodiscard]] const CommandTracker& tracker() const noexcept { return tracker_; }
+  // When the last valid command taken was written and taken (the hub layout hands its source
+  // timestamp on with the node fragments).
+  [[nodiscard]] const CommandTimes& last_valid_command() const noexcept { return last_valid_; }
 
   bool step(const Instant& now) noexcept override {
     const bool took_effect = advance(now);
@@ -181,7 +202,7 @@ class Node final : public NodeBase {
   // advance(): takes commands, runs the watchdog, reads inputs, decides the lifecycle state,
   // runs the logic (given the command in force only while operational), writes outputs.
   bool advance(const Instant& now) noexcept {
-    const bool took_effect = take_commands(now.mono);
+    const bool took_effect = take_commands(now);
     new_reader_ |= sink_.take_new_reader();
     if (tracker_.check(now.mono) == CommandTracker::Watchdog::kTripped) {
       options_.log->warn("{}: no valid command for more than {:.3f} s: outputs to safe state", options_.name,
@@ -200,10 +221,9 @@ class Node final : public NodeBase {
     if (alerts_ != nullptr) {
       for (std::size_t i = 0; i < alerts_->size(); ++i) errors_.add("{}", alerts_->at(i));
     }
-    // A rejection stays visible for one command timeout, or until a valid command takes effect.
-    if (has_rejection_ && now - rejected_at_ <= options_.command_timeout) {
-      errors_.add("rejected command: {}", last_rejection_.view());
-    }
+    // A rejection stays visible for one command timeout, or until a valid command takes effect;
+    // a stale command for one command timeout.
+    reports_->add_to(errors_, now);
     if (tracker_.has_echo() && !tracker_.fresh()) {
       errors_.add("command timeout: no valid command for {:.2f} s (limit {:.2f} s); outputs in safe state",
                   to_seconds(tracker_.since_last_command(now)), to_seconds(options_.command_timeout));
@@ -263,7 +283,20 @@ class Node final : public NodeBase {
     return errors_.empty() ? std::string_view() : errors_.at(0);
   }
   [[nodiscard]] std::uint64_t published() const noexcept override { return published_; }
-  [[nodiscard]] std::uint64_t rejected() const noexcept override { return rejected_; }
+  [[nodiscard]] std::uint64_t rejected() const noexcept override { return reports_->rejected_count(); }
+  [[nodiscard]] std::uint64_t commands_stale() const noexcept override { return reports_->stale_count(); }
+  [[nodiscard]] const CommandAgeJudge* command_ages() const noexcept override { return &ages_; }
+
+  void note_late(const Instant& now, Duration late, Time discard_until) noexcept override {
+    if (late <= options_.command_timeout) return;
+    ages_.begin_discarding(discard_until);
+    const std::uint64_t before = reports_->stale_count();
+    take_commands(now);  // drains what queued meanwhile: each is judged kQueued
+    options_.log->warn(
+        "{}: the hub could not run for {:.3f} s (more than the command timeout): {} queued "
+        "command(s) discarded; commands act again once it has caught up",
+        options_.name, to_seconds(late), reports_->stale_count() - before);
+  }
   [[nodiscard]] std::uint64_t states_deferred() const noexcept override { return budget_.deferred(); }
 
  private:
@@ -300,23 +333,55 @@ class Node final : public NodeBase {
                       lifecycle_.reason());
   }
 
-  // Drains the source; the last valid command wins. Returns true when one took effect.
-  bool take_commands(Time now) noexcept {
+  // Drains the source; the last valid young command wins. Returns true when one took effect.
+  bool take_commands(const Instant& now) noexcept {
     bool took_effect = false;
     for (;;) {
-      const Result<const CommandWire*> next = source_.next();
+      const Result<ReceivedCommand<CommandWire>> next = source_.next();
       if (!next.is_ok()) {
         options_.log->error("{}: taking commands failed: {}", options_.name, to_string(next.status().code()));
         break;
       }
-      const CommandWire* wire = next.value();
+      const CommandWire* wire = next.value().command;
       if (wire == nullptr) break;
       const Command command(*wire);
-      if (!addressed_here(command)) continue;
-      if (!accept(command, now)) continue;
-      took_effect |= take(command, now);
+      const CommandTimes times{next.value().source_time, now};
+      const CommandOutcome outcome = intake(command, times);
+      if (options_.command_observer != nullptr)
+        options_.command_observer->on_command(options_.name, wire, times, outcome);
+      took_effect |= outcome == CommandOutcome::kTookEffect;
     }
     return took_effect;
+  }
+
+  // One command taken from the source: addressed here? young enough? valid? Then recorded.
+  CommandOutcome intake(const Command& command, const CommandTimes& times) noexcept {
+    if (!addressed_here(command)) return CommandOutcome::kNotAddressed;
+    const Time now = times.taken.mono;
+    const JudgedAge age = ages_.judge(times);
+    switch (age.verdict) {
+      case AgeVerdict::kStale:
+      case AgeVerdict::kQueued:
+        reports_->stale(now, age);
+        return age.verdict == AgeVerdict::kStale ? CommandOutcome::kStale : CommandOutcome::kQueued;
+      case AgeVerdict::kFuture:
+        reports_->problem().format(
+            "stamped {:.3f} s in the future, beyond the clock tolerance ({:.0f} ms): the planner's and "
+            "the hub's clocks disagree",
+            -to_seconds(age.offset), to_seconds(ages_.tolerance().value_or(Duration::zero())) * 1e3);
+        reports_->rejected(now);
+        return CommandOutcome::kRejected;
+      case AgeVerdict::kUnstamped:
+        reports_->problem().assign("no source timestamp: its age cannot be judged (clock_tolerance_ms)");
+        reports_->rejected(now);
+        return CommandOutcome::kRejected;
+      case AgeVerdict::kYoung:
+        break;
+    }
+    if (!accept(command, now)) return CommandOutcome::kRejected;
+    const CommandOutcome outcome = take(command, now, age.written);
+    if (outcome != CommandOutcome::kRejected) last_valid_ = times;
+    return outcome;
   }
 
   [[nodiscard]] bool addressed_here(const Command& command) const noexcept {
@@ -327,7 +392,7 @@ class Node final : public NodeBase {
   // Command text quoted in a problem is Escaped: check_fields() already refused bad UTF-8, but
   // nothing a peer sends may reach a State unescaped.
   bool accept(const Command& command, Time now) noexcept {
-    Problem& problem = last_rejection_;
+    Problem& problem = reports_->problem();
     // Cyclone already dropped samples over the IDL bounds; this checks what the bounds cannot
     // (UTF-8, control characters, NaN) and the length of commands built in-process.
     bool ok = ops_.check_fields(&command.wire(), kMaxCommandString, problem);
@@ -348,42 +413,28 @@ class Node final : public NodeBase {
     }
     if (ok && !logic_.validate(command, problem)) ok = false;
     if (ok) return true;
-    note_rejection(now);
+    reports_->rejected(now);
     return false;
   }
 
-  // Counts a rejection; logs it when the reason changed or a second has passed, so a planner
-  // repeating a bad command at 100 Hz does not flood the journal.
-  void note_rejection(Time now) noexcept {
-    ++rejected_;
-    rejected_at_ = now;
-    has_rejection_ = true;
-    if (last_rejection_.view() != last_logged_.view() || now - logged_at_ >= std::chrono::seconds(1)) {
-      options_.log->warn("{}: rejected command ({} so far): {}", options_.name, rejected_,
-                         last_rejection_.view());
-      last_logged_.assign(last_rejection_.view());
-      logged_at_ = now;
-    }
-  }
-
-  // Records a valid command; copies it into the echo when its content is new.
-  bool take(const Command& command, Time now) noexcept {
+  // Records a valid command written at `written`; copies it into the echo when its content is new.
+  CommandOutcome take(const Command& command, Time now, Time written) noexcept {
     const bool differs = !tracker_.has_echo() || !ops_.equal(&command.wire(), &echo());
     // Copy into the spare buffer first, so a command too large to hold leaves the echo intact.
     if (differs && !ops_.copy_into(&command.wire(), &echoes_[1 - current_], arenas_[1 - current_])) {
-      last_rejection_.format("command too large to hold (more than {} bytes of strings and sequences)",
-                             kEchoArenaBytes);
-      note_rejection(now);
-      return false;
+      reports_->problem().format("command too large to hold (more than {} bytes of strings and sequences)",
+                                 kEchoArenaBytes);
+      reports_->rejected(now);
+      return CommandOutcome::kRejected;
     }
     if (differs) current_ = 1 - current_;
     const bool is_reset = command.action() == kResetAction;
-    if (tracker_.on_valid_command(now, differs, is_reset) != CommandTracker::Arrival::kTookEffect)
-      return false;
-    has_rejection_ = false;
+    if (tracker_.on_valid_command(now, written, differs, is_reset) != CommandTracker::Arrival::kTookEffect)
+      return CommandOutcome::kRepeat;
+    reports_->clear_rejection();
     if (is_reset) logic_.reset();
     options_.log->debug("{}: command took effect: action '{}'", options_.name, Command(echo()).action());
-    return true;
+    return CommandOutcome::kTookEffect;
   }
 
   [[nodiscard]] const CommandWire& echo() const noexcept { return echoes_[current_]; }
@@ -398,6 +449,7 @@ class Node final : public NodeBase {
   StateSink<StateWire>& sink_;
   const MessageOps& ops_;
   CommandTracker tracker_;
+  CommandAgeJudge ages_;
   ImmediateStateBudget budget_;
   // Double-buffered deep copies of the echoed command; echoes_[current_] is the echo.
   std::array<Arena, 2> arenas_;
@@ -405,16 +457,12 @@ class Node final : public NodeBase {
   int current_ = 0;
   State state_;  // owns the storage its sequences point into
   ErrorList errors_;
-  Problem last_rejection_;
-  Problem last_logged_;
-  Time rejected_at_{};
-  Time logged_at_{};
-  bool has_rejection_ = false;
+  std::optional<CommandReports> reports_;  // made once options_.log is set
+  CommandTimes last_valid_{};
   bool stopping_ = false;              // enter_safe_state() was called: safe for good
   bool transition_to_report_ = false;  // advance() changed the lifecycle; rebuild_state() logs it
   bool new_reader_ = false;            // a reader of the State matched since it was last published
   std::uint64_t published_ = 0;
-  std::uint64_t rejected_ = 0;
 };
 
 }  // namespace hubrt::runtime

@@ -2,18 +2,34 @@
 // to DDS readers and writers; the hub layout to a distributor and a collector; tests to queues.
 #pragma once
 
+#include <optional>
+
 #include "hubrt/base/status.h"
+#include "hubrt/base/time.h"
 
 namespace hubrt::runtime {
+
+// One command as its source hands it over: the command and when its writer wrote it.
+template <class Command>
+struct ReceivedCommand {
+  // nullptr when none is pending. The pointee stays valid until the source's next call.
+  const Command* command = nullptr;
+  // The writer's wall clock when it wrote the command: the DDS sample's source timestamp
+  // (dds_sample_info_t::source_timestamp; 0 when the writer sent none). A command's age is judged
+  // from it (command_age.h). Absent for a command built in this process (tests, fuzz harnesses):
+  // such a command is as old as its arrival.
+  std::optional<WallTime> source_time;
+};
 
 // Thread-safety: called only from the cycle thread.
 template <class Command>
 class CommandSource {
  public:
   virtual ~CommandSource() = default;
-  // The next received command, or nullptr when none is pending. The pointee stays valid until
-  // the next call. Errors: whatever the transport reports (the node logs them and carries on).
-  virtual Result<const Command*> next() noexcept = 0;
+  // The next received command (command == nullptr when none is pending), with its source
+  // timestamp. Allocation-free. Errors: whatever the transport reports (the node logs them and
+  // carries on).
+  virtual Result<ReceivedCommand<Command>> next() noexcept = 0;
   // False only when the transport knows that no command has arrived since next() last returned
   // none (the DDS source: its reader's data-available listener sets a flag, next() clears it);
   // true when one may be waiting, or when the source cannot tell. A command step steps the nodes

@@ -12,7 +12,8 @@
 
 namespace hubrt::hubs {
 
-// Opens the board's input / output `signal` now. A device that fails to open is no error here: it
+// Opens the board's input / output `signal` now (an output pulled toward its safe level:
+// DigitalOutputConfig::bias_toward_safe). A device that fails to open is no error here: it
 // is returned not open, its reason in error(), and retried with back-off by its user. Allocates.
 // Errors: kNotFound when the board has no such signal: "<owner>: board <file> has no input '<signal>'".
 // `backend` must outlive the device.
