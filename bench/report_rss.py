@@ -2,7 +2,7 @@
 and the board build's RSS row (hubrt_bench_heartbeat --board-build)."""
 
 # Where hubd's resident set goes beyond the bare writer's, by /proc/<pid>/smaps of both side by side
-# (x86, 100 Hz, Debian 12's libraries; docs: bench/README.md, "Memory").
+# (x86, 100 Hz, Debian 12's libraries; docs: bench/README.md, the row of hubrt_bench_heartbeat --board-hubd).
 WHERE_IT_GOES = (
     "Where the difference goes, by /proc/<pid>/smaps of both side by side (2026-11-28, x86, the Dock ECU's board "
     "program built with the board packages' flags, as bench/run measures it: build/host-board): hubd's own code, "

@@ -1,6 +1,8 @@
 // hubd running the Tool ECU (hubd_tool_fixture.h) with its drive and controller falling silent:
 // no State shows a device reading older than its validity as current, and fresh readings bring
 // the values back.
+#include <cmath>
+
 #include "hubd_tool_fixture.h"
 
 namespace hubrt::integration::tool_test {
@@ -12,13 +14,14 @@ namespace {
 std::string stale_shown_as_current(const View& v) {
   std::string out;
   if (v.lift.drive_online && v.lift.reading_age_ms > 500) out += "lift online with a stale reading; ";
-  if (!v.lift.drive_online && (v.lift.moving || v.lift.enabled || v.lift.position_mm != 0.0F ||
-                               v.lift.speed_mm_s != 0.0F || v.lift.fault_text != "unknown")) {
+  // Unknown numbers are NaN (README, "The wire contract"), never a value that reads like a reading.
+  if (!v.lift.drive_online && (v.lift.moving || v.lift.enabled || !std::isnan(v.lift.position_mm) ||
+                               !std::isnan(v.lift.speed_mm_s) || v.lift.fault_text != "unknown")) {
     out += "lift offline but drive values shown; ";
   }
   if (v.tool.status_fresh != (v.tool.status_age_ms <= 350)) out += "status_fresh disagrees with its age; ";
   if (!v.tool.status_fresh && (v.tool.controller_alarms != "unknown" ||
-                               v.tool.selected_program != "unknown" || v.tool.torque_nm != 0.0F)) {
+                               v.tool.selected_program != "unknown" || !std::isnan(v.tool.torque_nm))) {
     out += "stale controller status shown; ";
   }
   return out;

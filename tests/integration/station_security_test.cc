@@ -73,18 +73,26 @@ class StationSecurity : public ::testing::Test {
     options.extra_args = {"--security", station_, "--identity", identity};
     return HubProcess::start(*domain_, options);
   }
-  // The RSP ECU's command_steps (commands it stepped its nodes with) from /diagnostics, read as
-  // the observer; -1 when not found.
-  long command_steps() {
+  // A number the RSP ECU publishes on its /diagnostics cycle status (command_steps: the commands
+  // it stepped its nodes with; refused_participants, ...), read as the observer; -1 when absent.
+  long diagnostic(const std::string& key) {
     const Finished echo = run_hubctl(
         *domain_, as(station_, "observer", {"echo", "/diagnostics", "--count", "1", "--timeout", "30"}));
     std::smatch match;
-    static const std::regex kSteps(R"(key: command_steps\s+value: (\d+))");
-    if (!std::regex_search(echo.output, match, kSteps)) {
-      ADD_FAILURE() << "no command_steps in /diagnostics:\n" << echo.output;
+    const std::regex value("key: " + key + R"(\s+value: (\d+))");
+    if (!std::regex_search(echo.output, match, value)) {
+      ADD_FAILURE() << "no " << key << " in /diagnostics:\n" << echo.output;
       return -1;
     }
     return std::stol(match[1].str());
+  }
+  long command_steps() { return diagnostic("command_steps"); }
+  // Polls diagnostic(key) until it reaches `at_least` (the hub judges a participant refused once it
+  // stayed 15 s, or left after 5 s, without authenticating: dds/peer_authentication_watch.h).
+  long diagnostic_reaching(const std::string& key, long at_least) {
+    long value = -1;
+    for (int i = 0; i < 8 && value < at_least; ++i) value = diagnostic(key);
+    return value;
   }
   // The RSP ECU's simulated valves as its lines show them, read as the observer.
   std::string valves() {
@@ -138,6 +146,38 @@ TEST_F(StationSecurity, UnauthenticatedParticipantDiscoversAndActuatesNothing) {
   EXPECT_NE(send.output.find("nothing sent"), std::string::npos) << send.output;
   EXPECT_EQ(command_steps(), 0) << hub->output();
   EXPECT_EQ(valves(), safe_valves) << "a valve moved";
+  // Issue 34 point 4: the hub counts the participant it refused and says so in its log. The
+  // hubctl processes above ran without security for 3 s (list) and 10 s (send).
+  EXPECT_GE(diagnostic_reaching("refused_participants", 1), 1) << hub->output();
+  EXPECT_NE(hub->output().find("DDS Security refused a remote participant: participant "), std::string::npos)
+      << hub->output();
+}
+
+// A participant of another station's CA (issue 34 point 3): hubctl says authentication failed —
+// not that nobody reads — sends nothing and exits 1, with or without --count; the hub counts it
+// (point 4). Either side may be the one whose handshake reply fails (Cyclone's log names the
+// certificate error) or the one left waiting: hubctl says authentication failed in both.
+TEST_F(StationSecurity, ForeignCaParticipantIsToldAuthenticationFailedAndCounted) {
+  auto hub = start_hub("rsp_ecu", "rsp_ecu");
+  ASSERT_TRUE(hub) << hub.error().message;
+  const std::string other = root_ + "/other";
+  make({"security", "init", other});
+  make({"security", "add", other, "planner", "--role", "planner", "--sim"});
+  std::vector<std::string> forever = lock_command();
+  forever.resize(forever.size() - 6);  // without --count 5 --wait 1: until stopped, as in the issue
+  forever.insert(forever.end(), {"--timeout", "10"});
+  for (const auto& args : {as(other, "planner", forever), as(other, "planner", lock_command())}) {
+    const Finished send = run_hubctl(*domain_, args);
+    EXPECT_TRUE(send.status.exited_with(1)) << send.status.describe() << "\n" << send.output;
+    EXPECT_NE(send.output.find("hubctl send: authentication failed: "), std::string::npos) << send.output;
+    EXPECT_NE(send.output.find("nothing sent"), std::string::npos) << send.output;
+    EXPECT_EQ(send.output.find("nobody reads"), std::string::npos) << send.output;
+    EXPECT_EQ(send.output.find("sending anyway"), std::string::npos) << send.output;
+    EXPECT_NE(send.output.find("This participant is 'planner' with certificate "), std::string::npos)
+        << send.output;
+  }
+  EXPECT_EQ(command_steps(), 0) << hub->output();
+  EXPECT_GE(diagnostic_reaching("refused_participants", 1), 1) << hub->output();
 }
 
 // The observer may read but not command: Cyclone's access control refuses its command writer
@@ -181,6 +221,22 @@ TEST_F(StationSecurity, HubIdentityCannotPublishAnotherHubsState) {
   EXPECT_NE(run->output.find("rt/dock_ecu/dock/state"), std::string::npos) << run->output;
   EXPECT_NE(run->output.find("NOT_ALLOWED_BY_SECURITY"), std::string::npos) << run->output;
   EXPECT_NE(run->output.find("permissions of DDS Security identity 'dock_b' do not allow it"),
+            std::string::npos)
+      << run->output;
+}
+
+// Issue 34 point 5: a hub identity made without --sim on a simulation board (docs/deploy.md's
+// example before the fix) is refused with exit 2 naming rt/sim/input, and the message says --sim.
+TEST_F(StationSecurity, HubIdentityWithoutSimTopicsOnASimulationBoardIsToldToAddSim) {
+  make({"security", "add", station_, "dock_plain", "--role", "hub", "--hub", "dock_ecu"});
+  const auto run = run_hubd(
+      *domain_,
+      {"--board", "host-sim", "--hub", "dock_ecu", "--security", station_, "--identity", "dock_plain"},
+      kHubctlPatience);
+  ASSERT_TRUE(run) << run.error().message;
+  EXPECT_TRUE(run->status.exited_with(2)) << run->status.describe() << "\n" << run->output;
+  EXPECT_NE(run->output.find("rt/sim/"), std::string::npos) << run->output;
+  EXPECT_NE(run->output.find("hubctl security add <dir> dock_plain --role hub --hub <hub> --sim"),
             std::string::npos)
       << run->output;
 }

@@ -8,6 +8,7 @@ import signal
 import socket
 import subprocess
 import tempfile
+import threading
 import time
 import xmlrpc.client
 
@@ -122,6 +123,19 @@ class Processes:
     def bridge(self, key="hubbridge", file="tests/ros1/dock_bridge.yaml"):
         return self.start(key, [self.program("firmware/hubbridge/hubbridge"), file] + self.domain.args())
 
+    def bridge_file_with(self, file="tests/ros1/dock_bridge.yaml", **keys):
+        """A copy of bridge `file` with top-level `keys` set (a msg_dir it names made absolute)."""
+        import yaml
+        with open(os.path.join(SOURCE, file)) as f:
+            root = yaml.safe_load(f)
+        if "msg_dir" in root:
+            root["msg_dir"] = os.path.normpath(os.path.join(SOURCE, os.path.dirname(file), root["msg_dir"]))
+        root.update(keys)
+        path = os.path.join(self.dir, "bridge.yaml")
+        with open(path, "w") as f:
+            yaml.safe_dump(root, f)
+        return path
+
     def dock_ecu(self, key="dock_ecu", extra=()):
         return self.start(key, [PYTHON, os.path.join(HERE, "dock_ecu_ros1.py")] + list(extra))
 
@@ -137,6 +151,14 @@ class Processes:
             return []
         return [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
 
+    def record(self, topic):
+        """A StateRecorder of `topic` on DDS, started now (stopped by stop_all)."""
+        argv = [self.program("firmware/hubctl/hubctl"), "echo", topic, "--json"] + self.domain.args()
+        child = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=self.env,
+                                 cwd=SOURCE, start_new_session=True)
+        self.children["record " + topic] = child
+        return StateRecorder(child)
+
     def bridge_status(self, dds_topic, name="dock_ecu", wait_s=10):
         """hubbridge's /diagnostics status of the bridge to `dds_topic`: {level, message, values{}}."""
         deadline = time.monotonic() + wait_s
@@ -147,6 +169,31 @@ class Processes:
                         values = {kv["key"]: kv["value"] for kv in status["values"]}
                         return {"level": status["level"], "message": status["message"], "values": values}
         return None
+
+
+class StateRecorder:
+    """The samples `hubctl echo --json` prints, each with the monotonic time it arrived here."""
+
+    def __init__(self, child):
+        self.samples = []  # (arrival, JSON object)
+        self.lock = threading.Lock()
+        self.thread = threading.Thread(target=self._read, args=(child.stdout,), daemon=True)
+        self.thread.start()
+
+    def _read(self, stream):
+        for line in stream:
+            if line.startswith("{"):
+                with self.lock:
+                    self.samples.append((time.monotonic(), json.loads(line)))
+
+    def since(self, t):
+        with self.lock:
+            return [(at, s) for at, s in self.samples if at >= t]
+
+    def largest_gap(self, start, end):
+        """The longest time in [start, end] without a sample (end - start when none came)."""
+        times = [start] + [at for at, _ in self.since(start) if at <= end] + [end]
+        return max(b - a for a, b in zip(times, times[1:]))
 
 
 def wait_until(predicate, timeout_s, step_s=0.2):

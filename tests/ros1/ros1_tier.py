@@ -19,6 +19,7 @@ Exit 0 when every test passed, 1 otherwise."""
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -218,9 +219,99 @@ def test_mismatch(p):
         shutil.rmtree(changed)
 
 
+# A surviving ROS 1 node keeps reaching the station across a master restart: a State gap of at
+# most this long (issue 34: hubbridge registered again within about a second and the node's States
+# stopped for good until the node was restarted).
+MAX_RESTART_GAP_S = 5.0
+
+
+def test_master_restart(p):
+    """rosmaster is killed and restarted while the ECU runs: the ECU is not restarted, its States
+    keep reaching DDS (gap <= MAX_RESTART_GAP_S), its Command still arrives, and the new master lists
+    it again (hubbridge registered its publisher and subscriber on its behalf)."""
+    dock_running(p)
+    ecu = p.children["dock_ecu"]
+    pubs, _ = p.system_state()
+    ecu_names = [n for n in pubs.get(STATE, []) if n != "/dock_ecu"]
+    check(len(ecu_names) == 1, "the ECU's node is not the one publisher of %s: %s" % (STATE, pubs), p)
+    ecu_name = ecu_names[0]
+    recorder = p.record(STATE)
+    check(wait_until(lambda: len(recorder.since(0)) >= 5, 20), "no States recorded before the restart", p)
+    killed_at = time.monotonic()
+    p.stop("rosmaster", signal.SIGKILL)
+    time.sleep(2)  # the master stays away for a while, as a crashed one does
+    p.master()
+
+    check(wait_until(lambda: "/dock_ecu" in p.system_state()[1].get(STATE, []), 15),
+          "hubbridge did not register with the new master: %s" % (p.system_state(),), p)
+    time.sleep(10)  # the States must go on well after hubbridge registered again
+    end = time.monotonic()
+    gap = recorder.largest_gap(killed_at - 1.0, end)
+    check(gap <= MAX_RESTART_GAP_S, "the ECU's States stopped for %.1f s around the master restart" % gap, p)
+    pubs, subs = p.system_state()
+    check(pubs.get(STATE) == [ecu_name] and ecu_name in subs.get("/dock/command", []),
+          "the new master does not list the ECU again: %s" % ((pubs, subs),), p)
+    check(ecu.poll() is None and p.children.get("dock_ecu") is ecu, "the ECU was restarted", p)
+    # The Command direction, to the same ECU process.
+    p.hubctl(["send", "/dock/command", "target_type=dock", "target_name=dock", "action=reset", "--rate", "5",
+              "--count", "10"], 30)
+    echoed = wait_until(lambda: [s for _, s in recorder.since(end) if s["echo"]["action"] == "reset"], 10)
+    check(echoed, "the ECU's Command no longer arrives after the master restart", p)
+    status = p.bridge_status(STATE)
+    check(status and status["level"] == 0 and status["values"]["unregistered_publishers"] == ""
+          and ecu_name in status["values"]["registered_for"],
+          "diagnostics after the master restart: %s" % status, p)
+    return "States kept crossing (largest gap %.1f s), Command carried, %s listed again" % (gap, ecu_name)
+
+
+def test_master_restart_unregistered(p):
+    """As master_restart with register_lost_publishers: false: the link is kept all the same, and the
+    publisher the new master does not list is reported on /diagnostics."""
+    p.master()
+    p.bridge(file=p.bridge_file_with(register_lost_publishers=False))
+    p.dock_ecu()
+    check(len(p.echo(STATE, wait_s=20)) == 1, "no State of the ROS 1 Dock ECU on DDS", p)
+    recorder = p.record(STATE)
+    check(wait_until(lambda: len(recorder.since(0)) >= 5, 20), "no States recorded before the restart", p)
+    killed_at = time.monotonic()
+    p.stop("rosmaster", signal.SIGKILL)
+    time.sleep(2)
+    p.master()
+    status = wait_until(lambda: (lambda s: s if s and s["values"]["unregistered_publishers"] else None)(
+        p.bridge_status(STATE, wait_s=3)), 20)
+    check(status and status["level"] == 1 and "not registered with the ROS master" in status["message"],
+          "unregistered publisher not reported: %s" % status, p)
+    pubs, _ = p.system_state()
+    check(STATE not in pubs or pubs[STATE] == ["/dock_ecu"], "a publisher was registered on its behalf: %s" % pubs, p)
+    time.sleep(5)
+    gap = recorder.largest_gap(killed_at - 1.0, time.monotonic())
+    check(gap <= MAX_RESTART_GAP_S, "the ECU's States stopped for %.1f s around the master restart" % gap, p)
+    return "link kept (largest gap %.1f s); reported: %s" % (gap, status["message"])
+
+
+def test_over_bound(p):
+    """A publisher whose every State is over a bound: /diagnostics and `hubctl list` say it is
+    dropped over a bound (with the count), not that the ROS 1 side is silent."""
+    p.master()
+    p.bridge()
+    p.start("long_name", [PYTHON, os.path.join(HERE, "publish_dock_state.py"), "--name", "d" * 65])
+    status = wait_until(lambda: (lambda s: s if s and int(s["values"]["dropped"]) >= 3 else None)(
+        p.bridge_status(STATE, wait_s=3)), 20)
+    check(status and status["level"] == 1 and status["message"].startswith("dropped ")
+          and "over a bound" in status["message"] and "name: 65 bytes, over the bound of 64" in status["message"],
+          "over-bound States not reported ahead of silence: %s" % status, p)
+    listed = p.hubctl(["list", "--wait", "2"], 30).stdout
+    check(any("DROPPED OVER A BOUND" in l for l in listed.splitlines() if STATE in l)
+          and not any("SILENT" in l for l in listed.splitlines() if STATE in l),
+          "hubctl list does not show the drops ahead of silence:\n" + listed, p)
+    return status["message"]
+
+
 TESTS = {"msgs": test_msgs, "conformance": test_conformance, "use_case": test_use_case,
          "conformance_hub": lambda p: test_conformance(p, "hub"), "use_case_hub": lambda p: test_use_case(p, "hub"),
-         "restart": test_restart, "mismatch": test_mismatch}
+         "restart": test_restart, "mismatch": test_mismatch,
+         "master_restart": test_master_restart, "master_restart_unregistered": test_master_restart_unregistered,
+         "over_bound": test_over_bound}
 
 
 def main():

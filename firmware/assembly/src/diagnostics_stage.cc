@@ -1,8 +1,12 @@
 #include "hubrt/assembly/diagnostics_stage.h"
 
+#include <algorithm>
+#include <chrono>
+
 #include <fmt/format.h>
 
 #include "hubrt/dds/oversize_samples.h"
+#include "hubrt/dds/security_refusals.h"
 #include "hubrt/hub_api/topic_names.h"
 #include "hubrt/runtime/immediate_state_budget.h"
 
@@ -38,25 +42,33 @@ Expected<DiagnosticsStage::Endpoint> DiagnosticsStage::open_endpoint(const dds::
   if (!topic) return std::move(topic).error();
   auto writer = dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_>::create(participant, *topic);
   if (!writer) return std::move(writer).error();
-  return Endpoint{std::move(*topic), std::move(*writer)};
+  std::unique_ptr<dds::PeerAuthenticationWatch> peers;
+  if (dds::security_refusals_counted()) {
+    auto watch = dds::PeerAuthenticationWatch::start(participant);
+    if (!watch) return std::move(watch).error();
+    peers = std::move(*watch);
+  }
+  return Endpoint{std::move(*topic), std::move(*writer), std::move(peers)};
 }
 
 std::unique_ptr<DiagnosticsStage> DiagnosticsStage::create(
     Endpoint endpoint, const runtime::Hub& hub, std::string hardware_id, Duration interval,
     Duration command_timeout, Duration immediate_state_interval,
     const std::atomic<std::uint64_t>* log_lines_dropped) {
-  return std::unique_ptr<DiagnosticsStage>(
-      new DiagnosticsStage(std::move(endpoint.topic), std::move(endpoint.writer), hub, std::move(hardware_id),
-                           interval, command_timeout, immediate_state_interval, log_lines_dropped));
+  return std::unique_ptr<DiagnosticsStage>(new DiagnosticsStage(
+      std::move(endpoint.topic), std::move(endpoint.writer), std::move(endpoint.peers), hub,
+      std::move(hardware_id), interval, command_timeout, immediate_state_interval, log_lines_dropped));
 }
 
 DiagnosticsStage::DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
                                    dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
+                                   std::unique_ptr<dds::PeerAuthenticationWatch> peers,
                                    const runtime::Hub& hub, std::string hardware_id, Duration interval,
                                    Duration command_timeout, Duration immediate_state_interval,
                                    const std::atomic<std::uint64_t>* log_lines_dropped)
     : topic_(std::move(topic)),
       writer_(std::move(writer)),
+      peers_(std::move(peers)),
       hub_(hub),
       hardware_id_(std::move(hardware_id)),
       interval_(interval),
@@ -94,8 +106,9 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   s.name.format("{}: cycle", hub_.options().name);
   const double period_ms = to_seconds(hub_.options().period) * 1e3;
   s.message.format("{} cycles at {:.1f} ms, {} overruns", stats.cycles, period_ms, stats.overruns);
-  // At most 23 values (kMaxValues is 24): 14 always, 5 more when every option is given, 4 more in
-  // the hub layout; the guard keeps a key added later from writing past the storage.
+  // At most 27 values (kMaxValues is 28): 14 always, 5 more when every option is given, 4 more when
+  // the process counts security refusals, 4 more in the hub layout; the guard keeps a key added
+  // later from writing past the storage.
   std::size_t n = 0;
   const auto add = [&](const char* key, auto value) {
     if (n == kMaxValues) return;
@@ -132,12 +145,34 @@ void DiagnosticsStage::fill_hub_status(const Instant& now) noexcept {
   // Samples larger than dds::kMaxSampleSizeBytes that Cyclone discarded in this process (a hubd
   // is one hub), when the process counts them (hubd does: dds/oversize_samples.h).
   if (dds::oversize_samples_counted()) add("oversize_samples_dropped", dds::oversize_samples_dropped());
+  // What DDS Security refused in this process (a secured hubd is one hub): someone tried to join or
+  // to write without the station's credentials. Participants from discovery (they never show an
+  // endpoint: dds/peer_authentication_watch.h), the rest from Cyclone's log (dds/security_refusals.h).
+  const dds::SecurityRefusalCounts logged = dds::security_refusals();
+  const dds::PeerAuthenticationWatch::Counts peers =
+      peers_ ? peers_->counts(std::chrono::steady_clock::now()) : dds::PeerAuthenticationWatch::Counts{};
+  const std::uint64_t refused_participants = std::max(peers.refused, logged.participants);
+  if (dds::security_refusals_counted()) {
+    add("refused_participants", refused_participants);
+    add("unauthenticated_participants", peers.unauthenticated_now);
+    add("refused_writers", logged.writers);
+    add("authentication_failures", logged.authentication);
+  }
   // The hub layout: the hub-level command's own intake (its stale commands never reach a node).
   if (const runtime::NodeBase* hub_level = hub_.hub_level_node(); hub_level != nullptr)
     add_command_counts(*hub_level, add);
   wire_statuses_[0].values._length = static_cast<std::uint32_t>(n);
   wire_statuses_[0].level =
       stats.publish_errors > 0 ? level_of(runtime::Health::kWarn) : level_of(runtime::Health::kOk);
+  // Refusals are an attempt on the station (or a participant of another CA): say so on the line.
+  if (refused_participants + logged.writers + logged.readers + logged.authentication > 0) {
+    s.message.format(
+        "{} cycles at {:.1f} ms, {} overruns; DDS Security refused {} participant(s) ({} now), {} "
+        "writer(s), {} handshake step(s)",
+        stats.cycles, period_ms, stats.overruns, refused_participants, peers.unauthenticated_now,
+        logged.writers, logged.authentication);
+    wire_statuses_[0].level = level_of(runtime::Health::kWarn);
+  }
   // A hub-wide alert (e.g. a twin) concerns the hub as a whole: say it on the hub's line too.
   if (!hub_.alerts().empty()) {
     s.message.assign(hub_.alerts().at(0));

@@ -8,7 +8,7 @@
 
 #include <dds/dds.h>
 
-#include "hubrt/dds/retcode.h"
+#include "builtin_reader.h"
 
 namespace hubrt::dds {
 namespace {
@@ -111,17 +111,6 @@ struct ProcessInfo {
   std::string user_data;
 };
 
-Expected<EntityHandle> builtin_reader(const Participant& participant, dds_entity_t topic, const char* name,
-                                      void* arg, dds_on_data_available_fn callback) {
-  const std::unique_ptr<dds_listener_t, decltype(&dds_delete_listener)> listener(dds_create_listener(arg),
-                                                                                 &dds_delete_listener);
-  dds_lset_data_available(listener.get(), callback);
-  EntityHandle reader(dds_create_reader(participant.handle(), topic, nullptr, listener.get()));
-  if (reader.get() < 0)
-    return dds_error(reader.get(), std::string("watch writers: read discovery topic ") + name);
-  return reader;
-}
-
 }  // namespace
 
 WriterWatch::WriterWatch(Guid self, TopicFilter filter, WritersChanged changed)
@@ -131,12 +120,14 @@ Expected<std::unique_ptr<WriterWatch>> WriterWatch::start(const Participant& par
                                                           WritersChanged changed) {
   std::unique_ptr<WriterWatch> watch(
       new WriterWatch(participant.guid(), std::move(filter), std::move(changed)));
-  auto participants = builtin_reader(participant, DDS_BUILTIN_TOPIC_DCPSPARTICIPANT, "DCPSParticipant",
-                                     watch.get(), &WriterWatch::on_data_available);
+  auto participants =
+      detail::listening_builtin_reader(participant, DDS_BUILTIN_TOPIC_DCPSPARTICIPANT, "DCPSParticipant",
+                                       "watch writers", watch.get(), &WriterWatch::on_data_available);
   if (!participants) return std::move(participants).error();
   watch->participants_ = std::move(*participants);
-  auto publications = builtin_reader(participant, DDS_BUILTIN_TOPIC_DCPSPUBLICATION, "DCPSPublication",
-                                     watch.get(), &WriterWatch::on_data_available);
+  auto publications =
+      detail::listening_builtin_reader(participant, DDS_BUILTIN_TOPIC_DCPSPUBLICATION, "DCPSPublication",
+                                       "watch writers", watch.get(), &WriterWatch::on_data_available);
   if (!publications) return std::move(publications).error();
   watch->publications_ = std::move(*publications);
   watch->ready_ = true;

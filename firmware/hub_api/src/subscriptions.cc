@@ -53,13 +53,11 @@ Expected<Subscriptions::Found> Subscriptions::find(const config::HubConfig& conf
   const msgs::TypeRegistry& types = msgs::all_types();
   const msgs::TypeInfo* type = types.find(sub->type);
   if (type == nullptr || type->descriptor == nullptr) {
-    const std::vector<std::string> close = types.suggest(sub->type);
     return make_error(
         ErrorCode::kInvalidArgument,
-        fmt::format("{}: subscriptions.{}.type: unknown message type '{}'{} (this hubd holds the "
-                    "message types of its hub types and their inputs)",
-                    config.file, name, sub->type,
-                    close.empty() ? "" : fmt::format("; did you mean {}?", fmt::join(close, ", "))));
+        fmt::format("{}: subscriptions.{}.type: {} (this hubd holds the message types of its hub "
+                    "types and their inputs)",
+                    config.file, name, types.unknown_type_message(sub->type)));
   }
   Found found{sub->name, sub->topic, sub->timeout, type->descriptor, 0};
   if (sub->field.empty()) {

@@ -53,14 +53,18 @@ Expected<BridgeConfig> bridge_of(const config::YamlMap& map) {
 
 Expected<BridgeFile> from_map(const Expected<config::YamlMap>& root, const std::string& base_dir) {
   if (!root) return root.error();
-  if (auto ok = root->only_keys({"name", "msg_dir", "silent_after_ms", "bridges"}); !ok)
+  if (auto ok =
+          root->only_keys({"name", "msg_dir", "silent_after_ms", "register_lost_publishers", "bridges"});
+      !ok)
     return std::move(ok).error();
   BridgeFile file;
   auto name = root->string_or("name", "hubbridge");
   auto msg_dir = root->string_or("msg_dir", "");
   auto silent = root->integer_or("silent_after_ms", 2000, 10, 3600000);
+  auto register_lost = root->boolean_or("register_lost_publishers", true);
   auto bridges = root->list_of_maps("bridges");
   if (!name) return std::move(name).error();
+  if (!register_lost) return std::move(register_lost).error();
   if (!msg_dir) return std::move(msg_dir).error();
   if (!silent) return std::move(silent).error();
   if (!bridges) return std::move(bridges).error();
@@ -69,6 +73,7 @@ Expected<BridgeFile> from_map(const Expected<config::YamlMap>& root, const std::
     file.msg_dir = (std::filesystem::path(base_dir) / *msg_dir).lexically_normal().string();
   }
   file.silent_after_s = static_cast<double>(*silent) / 1000.0;
+  file.register_lost_publishers = *register_lost;
   // One writer per topic and direction: two bridges publishing one topic would be the duplicate
   // publishers a static bridge exists to avoid.
   std::set<std::string> published;

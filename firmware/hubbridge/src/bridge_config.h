@@ -27,6 +27,9 @@ struct BridgeFile {
   std::string msg_dir;    // ROS 2 interface tree (contains hub_msgs/msg/*.msg), resolved; empty:
                           // the .msg texts built into hubbridge (hubrt/msgs/definitions.h)
   double silent_after_s;  // ros1_to_dds: no sample for this long -> "silent" on /diagnostics
+  // After a rosmaster restart, register the ROS 1 nodes this bridge is connected to with the new
+  // master on their behalf (master_sync.h); false: only hubbridge's own endpoints.
+  bool register_lost_publishers = true;
   std::vector<BridgeConfig> bridges;
 };
 

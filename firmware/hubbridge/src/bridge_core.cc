@@ -1,5 +1,6 @@
 #include "bridge_core.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -23,9 +24,7 @@ const msgs::FieldInfo* field_named(const msgs::TypeInfo& type, std::string_view 
 Expected<BridgedType> bridged_type(std::string_view name, const ros1::Messages& messages) {
   const msgs::TypeInfo* type = msgs::all_types().find(name);
   if (type == nullptr || type->descriptor == nullptr) {
-    return make_error(ErrorCode::kInvalidArgument,
-                      fmt::format("unknown message type '{}'; did you mean: {}", name,
-                                  fmt::join(msgs::all_types().suggest(name), ", ")));
+    return make_error(ErrorCode::kInvalidArgument, msgs::all_types().unknown_type_message(name));
   }
   BridgedType out;
   out.type = type;
@@ -111,6 +110,30 @@ Verdict Ros1Inbound::take(std::span<const std::uint8_t> bytes, std::string* why)
 void to_ros1(const BridgedType& type, const void* sample, std::vector<std::uint8_t>& out) {
   out.clear();
   ros1::encode(*type.type, sample, out);
+}
+
+void HeardPublishers::heard(std::string_view caller_id, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  for (auto& [name, at] : last_) {
+    if (name == caller_id) {
+      at = now_ns;
+      return;
+    }
+  }
+  if (last_.size() == kMax) {
+    last_.erase(std::min_element(last_.begin(), last_.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; }));
+  }
+  last_.emplace_back(std::string(caller_id), now_ns);
+}
+
+std::vector<std::string> HeardPublishers::since(std::int64_t since_ns) const {
+  const std::lock_guard lock(mutex_);
+  std::vector<std::string> out;
+  for (const auto& [name, at] : last_) {
+    if (at >= since_ns) out.push_back(name);
+  }
+  return out;
 }
 
 }  // namespace hubrt::hubbridge

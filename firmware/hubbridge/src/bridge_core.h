@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -38,6 +39,24 @@ struct BridgeCounters {
   std::atomic<std::uint64_t> stale{0};        // a sample that was forwarded before (same seq and stamp)
   std::atomic<std::uint64_t> write_errors{0};
   std::atomic<std::int64_t> last_forward_ns{-1};  // monotonic time of the last forward; -1: none yet
+  std::atomic<std::int64_t> last_drop_ns{-1};     // monotonic time of the last drop over a bound; -1: none
+};
+
+// The ROS 1 publishers (caller ids) a bridge received messages of its type from, each with the
+// time of the last one: who is alive and publishing, for MasterSync (master_sync.h). Bounded:
+// kMax caller ids, the one heard longest ago forgotten first. Thread-safe (the ROS 1 callback
+// thread writes, the main thread reads).
+class HeardPublishers {
+ public:
+  static constexpr std::size_t kMax = 32;
+  // Allocates only for a caller id not held yet.
+  void heard(std::string_view caller_id, std::int64_t now_ns);
+  // The caller ids heard at `since_ns` or later, in the order first heard.
+  [[nodiscard]] std::vector<std::string> since(std::int64_t since_ns) const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::pair<std::string, std::int64_t>> last_;
 };
 
 enum class Verdict : std::uint8_t { kForward, kOverBound, kTypeError, kStale };

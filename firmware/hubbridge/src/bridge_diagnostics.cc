@@ -1,6 +1,7 @@
 #include "bridge_diagnostics.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
@@ -25,15 +26,22 @@ nlohmann::ordered_json key_value(std::string key, std::string value) {
 
 nlohmann::ordered_json bridge_diagnostics(const BridgeFile& file,
                                           std::vector<std::unique_ptr<Bridge>>& bridges,
-                                          std::uint64_t registrations, std::int64_t now_ns,
-                                          std::int64_t wall_ns) {
+                                          std::span<const EndpointSync> sync, std::uint64_t registrations,
+                                          std::int64_t now_ns, std::int64_t wall_ns) {
   nlohmann::ordered_json statuses = nlohmann::ordered_json::array();
-  for (auto& bridge : bridges) {
+  static const EndpointSync kNoSync;
+  for (std::size_t index = 0; index < bridges.size(); ++index) {
+    auto& bridge = bridges[index];
+    const EndpointSync& at_master = index < sync.size() ? sync[index] : kNoSync;
     const BridgeCounters& c = bridge->counters;
     const std::int64_t last = c.last_forward_ns.load();
+    const std::int64_t last_drop = c.last_drop_ns.load();
     const double age_s = last < 0 ? -1.0 : static_cast<double>(now_ns - last) / 1e9;
     const bool inbound = bridge->config.direction == Direction::kRos1ToDds;
     const bool silent = inbound && (last < 0 || age_s > file.silent_after_s);
+    // Over-bound messages lately: the ROS 1 side is not silent, the bridge drops what it sends.
+    const bool dropping =
+        last_drop >= 0 && static_cast<double>(now_ns - last_drop) / 1e9 <= file.silent_after_s;
     std::string problem;
     {
       const std::lock_guard lock(bridge->problem_mutex);
@@ -44,10 +52,23 @@ nlohmann::ordered_json bridge_diagnostics(const BridgeFile& file,
     if (c.type_errors > 0) {
       level = kError;
       message = problem.empty() ? "type errors" : problem;
+    } else if (dropping) {
+      level = kWarn;
+      message = fmt::format("dropped {} over a bound{}: {}", c.dropped.load(),
+                            !silent    ? ""
+                            : last < 0 ? ", forwarded none"
+                                       : fmt::format(", forwarded none for {:.1f} s", age_s),
+                            problem);
     } else if (silent) {
       level = kWarn;
       message = last < 0 ? "silent: no ROS 1 sample yet"
                          : fmt::format("silent: no ROS 1 sample for {:.1f} s", age_s);
+    } else if (!at_master.unregistered.empty()) {
+      level = kWarn;
+      message = fmt::format(
+          "publisher {} is not registered with the ROS master (restarted?): its link holds, but "
+          "ROS 1 tools do not see it and a new subscriber will not find it",
+          fmt::join(at_master.unregistered, ", "));
     } else if (c.dropped > 0 || c.stale > 0) {
       level = kWarn;
       message = problem;
@@ -66,7 +87,14 @@ nlohmann::ordered_json bridge_diagnostics(const BridgeFile& file,
     values.push_back(
         key_value("last_sample_age_ms", last < 0 ? "never" : fmt::format("{:.0f}", age_s * 1000.0)));
     values.push_back(key_value("silent", silent ? "true" : "false"));
+    values.push_back(key_value("dropping", dropping ? "true" : "false"));
     values.push_back(key_value("ros1_registrations", std::to_string(registrations)));
+    if (inbound) {
+      values.push_back(
+          key_value("unregistered_publishers", fmt::format("{}", fmt::join(at_master.unregistered, ", "))));
+    }
+    values.push_back(
+        key_value("registered_for", fmt::format("{}", fmt::join(at_master.registered_for, ", "))));
     statuses.push_back({{"level", level},
                         {"name", fmt::format("hubbridge {}: {}", file.name, bridge->config.dds_topic)},
                         {"message", message},

@@ -92,9 +92,8 @@ void BridgeRunner::shutdown_ros1() {
 }
 
 void BridgeRunner::register_ros1(ros::NodeHandle& node) {
-  // Shut down first: roscpp keeps one registration per topic and node, and a fresh subscribe or
-  // advertise after shutdown registers with whichever master answers now (TopicManager::subscribe
-  // / advertise call registerSubscriber / registerPublisher on the master).
+  // Shut down first: roscpp keeps one registration per topic and node (TopicManager::subscribe /
+  // advertise call registerSubscriber / registerPublisher on the master).
   shutdown_ros1();
   for (auto& bridge_ptr : bridges_) {
     Bridge& bridge = *bridge_ptr;
@@ -108,7 +107,21 @@ void BridgeRunner::register_ros1(ros::NodeHandle& node) {
       bridge.publisher = shape.advertise(node, bridge.config.ros1_topic, queue, bridge.config.latch);
     }
   }
-  ++registrations_;
+}
+
+std::vector<SyncedEndpoint> BridgeRunner::endpoints() const {
+  std::vector<SyncedEndpoint> out;
+  for (const auto& bridge : bridges_) {
+    out.push_back({bridge->config.ros1_topic, bridge->type.ros1_name,
+                   bridge->config.direction == Direction::kRos1ToDds});
+  }
+  return out;
+}
+
+std::vector<std::vector<std::string>> BridgeRunner::heard_since(std::int64_t since_ns) const {
+  std::vector<std::vector<std::string>> out;
+  for (const auto& bridge : bridges_) out.push_back(bridge->heard.since(since_ns));
+  return out;
 }
 
 void BridgeRunner::subscribe(Bridge& bridge, ros::NodeHandle& node) {
@@ -158,6 +171,7 @@ void BridgeRunner::on_ros1_message(Bridge& bridge,
     if (!bridge.strict.exchange(true)) bridge.resubscribe = true;
     return;
   }
+  bridge.heard.heard(event.getPublisherName(), monotonic_ns());
   std::vector<std::uint8_t> bytes(message.size());
   ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
   message.write(stream);
@@ -173,6 +187,7 @@ void BridgeRunner::on_ros1_message(Bridge& bridge,
       return;
     case Verdict::kOverBound:
       ++bridge.counters.dropped;
+      bridge.counters.last_drop_ns = monotonic_ns();
       break;
     case Verdict::kTypeError:
       ++bridge.counters.type_errors;

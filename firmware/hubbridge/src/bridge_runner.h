@@ -1,6 +1,6 @@
 // One hubbridge process: its bridges' DDS readers and writers, their ROS 1 subscribers and
-// publishers (roscpp, topic_tools::ShapeShifter so that no type is compiled in), and the watch on
-// rosmaster that registers them again when the master restarts.
+// publishers (roscpp, topic_tools::ShapeShifter so that no type is compiled in). What keeps them
+// registered across rosmaster restarts is MasterSync (master_sync.h).
 #pragma once
 
 #include <atomic>
@@ -21,6 +21,7 @@
 
 #include "bridge_config.h"
 #include "bridge_core.h"
+#include "master_sync.h"
 
 namespace hubrt::hubbridge {
 
@@ -36,6 +37,7 @@ struct Bridge {
   ros::Publisher publisher;                  // dds_to_ros1
   std::vector<std::uint8_t> dds_sample;      // dds_to_ros1: taken samples land here
   std::vector<std::uint8_t> ros1_bytes;      // dds_to_ros1: serialised for ROS 1
+  HeardPublishers heard;                     // ros1_to_dds: who sends messages of the type
   std::string last_problem;                  // the last refusal, for /diagnostics
   // A roscpp 1.15 subscription with md5sum "*" takes the md5sum of the first publisher it hears
   // and asks every later one for it (seen in tests/ros1's mismatch test: the next, right
@@ -56,8 +58,8 @@ class BridgeRunner {
                                                         dds::Participant& participant);
   ~BridgeRunner();
 
-  // Registers every bridge with the ROS 1 master (subscribers and publishers). Call again after a
-  // master restart: the old registrations are shut down first, so no bridge is there twice.
+  // Subscribes and advertises every bridge through roscpp, which registers them with the master.
+  // Once: after a master restart MasterSync registers them again without dropping their links.
   void register_ros1(ros::NodeHandle& node);
   void shutdown_ros1();
   // Subscribes again, strictly, the bridges that heard a publisher of another definition. Main
@@ -68,7 +70,10 @@ class BridgeRunner {
   void forward_dds(Duration timeout);
 
   [[nodiscard]] std::vector<std::unique_ptr<Bridge>>& bridges() { return bridges_; }
-  [[nodiscard]] std::uint64_t registrations() const { return registrations_; }
+  // Each bridge's ROS 1 side, in bridge order, for MasterSync.
+  [[nodiscard]] std::vector<SyncedEndpoint> endpoints() const;
+  // Per bridge (in order), the publishers heard at `since_ns` or later (none for dds_to_ros1).
+  [[nodiscard]] std::vector<std::vector<std::string>> heard_since(std::int64_t since_ns) const;
 
  private:
   BridgeRunner() = default;
@@ -80,7 +85,6 @@ class BridgeRunner {
   std::mutex wake_mutex_;
   std::condition_variable wake_;
   std::atomic<bool> dds_data_{false};
-  std::uint64_t registrations_ = 0;
 };
 
 // Monotonic nanoseconds (steady clock), for sample ages.

@@ -18,6 +18,8 @@
 
 #include "bridge_diagnostics.h"
 #include "bridge_runner.h"
+#include "master_sync.h"
+#include "ros1_graph.h"
 
 namespace hubrt::hubbridge {
 namespace {
@@ -38,17 +40,6 @@ struct Options {
   std::string write_ros1_msgs;
   bool md5sums = false;
 };
-
-// rosmaster's process id (the getPid call of the ROS Master API), or 0 when it does not answer:
-// a different id means the master restarted and forgot every registration.
-int master_pid() {
-  XmlRpc::XmlRpcValue args;
-  XmlRpc::XmlRpcValue result;
-  XmlRpc::XmlRpcValue payload;
-  args[0] = ros::this_node::getName();
-  if (!ros::master::execute("getPid", args, result, payload, false)) return 0;
-  return payload.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(payload) : 0;
-}
 
 // Writes every hub_msgs message of `messages` as a ROS 1 .msg file into <dir>/<pkg>/msg/, for
 // ROS 1 nodes that build their message classes from files (the test tree's Dock ECU).
@@ -155,24 +146,25 @@ int run(const Options& options) {
   ros::AsyncSpinner spinner(1);  // one thread: each bridge's inbound state has one writer
   spinner.start();
 
-  int registered_with = 0;  // master pid the bridges are registered with; 0: none
+  XmlRpcRos1Graph graph;
+  MasterSync sync(graph, (*runner)->endpoints(), file->register_lost_publishers);
+  const auto silent_after_ns = static_cast<std::int64_t>(file->silent_after_s * 1e9);
   auto next_check = std::chrono::steady_clock::now();
   while (!g_stop) {
     (*runner)->forward_dds(std::chrono::milliseconds(20));
-    if (registered_with != 0) (*runner)->resubscribe_refused(node);
+    if (sync.registrations() > 0) (*runner)->resubscribe_refused(node);
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) continue;
     next_check = now + std::chrono::seconds(1);
-    const int pid = master_pid();
-    if (pid != 0 && pid != registered_with) {
-      spdlog::info("rosmaster (pid {}) {}: registering {} bridges", pid,
-                   registered_with == 0 ? "answers" : "restarted", file->bridges.size());
+    if (sync.turn((*runner)->heard_since(monotonic_ns() - silent_after_ns)) ==
+        MasterSync::Action::kRegisterFirst) {
+      spdlog::info("rosmaster answers: registering {} bridges", file->bridges.size());
       (*runner)->register_ros1(node);
-      registered_with = pid;
+      sync.registered_first();
     }
     const auto wall = std::chrono::system_clock::now().time_since_epoch();
     auto published = diagnostics->publish(
-        bridge_diagnostics(*file, (*runner)->bridges(), (*runner)->registrations(), monotonic_ns(),
+        bridge_diagnostics(*file, (*runner)->bridges(), sync.status(), sync.registrations(), monotonic_ns(),
                            std::chrono::duration_cast<std::chrono::nanoseconds>(wall).count()));
     if (!published) spdlog::warn("{}", published.error().message);
   }

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "hub_diagnostics.h"
+#include "peer_authentication.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -26,8 +27,8 @@ int run_list(const ListOptions& options) {
     return kExitUsage;
   }
   // Discovery needs a moment; keep looking for the given time and report what was seen. Meanwhile
-  // /diagnostics tells which bridged topics a hubbridge reports silent.
-  auto silent = listen_for_silent_bridges(*participant, options.wait_s);
+  // /diagnostics tells which bridged topics a hubbridge reports dropping or silent.
+  auto silent = listen_for_quiet_bridges(*participant, options.wait_s);
   if (!silent) {
     fmt::print(stderr, "hubctl list: {}\n", silent.error().message);
     return kExitFailed;
@@ -51,13 +52,14 @@ int run_list(const ListOptions& options) {
     std::string line = fmt::format("  {:6} {:40} {}", writer ? "pub" : "sub",
                                    ros ? *ros : endpoint.topic_name, type ? *type : endpoint.type_name);
     if (const auto quiet = ros ? silent->find(*ros) : silent->end(); writer && quiet != silent->end()) {
-      line += fmt::format("  SILENT ({})", quiet->second);
+      line += fmt::format("  {} ({})", quiet->second.label, quiet->second.message);
     }
     const auto it = names.find(endpoint.participant_key);
     topics_by_participant[it == names.end() ? "(unknown participant)" : it->second].push_back(line);
   }
   if (topics_by_participant.empty()) {
     fmt::print("no hubs seen on domain {} within {:.1f} s\n", participant->domain_id(), options.wait_s);
+    if (auto why = authentication_problem(*participant, options.domain)) fmt::print("{}\n", *why);
     return kExitFailed;
   }
   for (auto& [name, lines] : topics_by_participant) {

@@ -17,6 +17,7 @@
 #include "command_channel.h"
 #include "command_qos.h"
 #include "commands.h"
+#include "peer_authentication.h"
 #include "reader_wait.h"
 #include "render.h"
 #include "session.h"
@@ -106,6 +107,11 @@ int run_send(const SendOptions& options) {
   wait.timeout = seconds(options.domain.timeout_s);
   auto readers = wait_for_readers(*writer, wait, *ros_name);
   if (!readers) {
+    // Nobody reads because nobody authenticated us (or we them): say so, and send nothing.
+    if (auto why = authentication_problem(*participant, options.domain)) {
+      fmt::print(stderr, "hubctl send: {}; nothing sent\n", *why);
+      return kExitFailed;
+    }
     if (limit != 0 || options.wait_readers > 0) {
       fmt::print(stderr, "hubctl send: {}; nothing sent\n", readers.error().message);
       return kExitFailed;
@@ -159,7 +165,8 @@ void add_send_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd =
       app.add_subcommand("send", "Publish a command repeatedly at a fixed rate, as the planner does");
   cmd->footer(
-      "Exit status: 0 sent (with --once/--count: and acknowledged by every matched reader); 1 no reader, "
+      "Exit status: 0 sent (with --once/--count: and acknowledged by every matched reader); 1 no reader "
+      "(with DDS Security: no peer authenticated, said as such), "
       "fewer than --wait N readers, a write failed or a reader did not acknowledge within --timeout; "
       "2 bad arguments, unknown topic or type; 130 (143) Ctrl-C (SIGTERM) before --once/--count was "
       "done. Without --once/--count, Ctrl-C is the normal end (0).");

@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "recording_source.h"
+#include "render.h"
 #include "sample_decoder.h"
 #include "session.h"
 #include "station_tap.h"
@@ -51,6 +52,8 @@ std::string details(const nlohmann::ordered_json& state) {
       text = value.get<std::string>();
     } else if (value.is_number_float()) {
       text = fmt::format("{:g}", value.get<double>());
+    } else if (value.is_null()) {
+      text = "NaN";  // a float not measured (null in JSON)
     } else {
       text = safe_dump(value);
     }
@@ -76,7 +79,7 @@ void draw(const std::map<std::string, WatchedState>& watched, bool plain,
     std::string action = s.contains("echo") ? s["echo"].value("action", "") : "";
     if (action.empty()) action = "-";
     screen += fmt::format("{:<34} {:<5} {:<15} {:>7.1f} {:<16} {}\n", topic, fresh, lifecycle(s),
-                          s.value("t_plus", 0.0), action, details(s));
+                          number_or_nan(s, "t_plus"), action, details(s));
     if (s.contains("error_list")) {
       for (const auto& e : s["error_list"])
         screen += fmt::format("{:<34}   ! {}\n", "", e.get<std::string>());

@@ -91,8 +91,28 @@ Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& partic
   return hubs;
 }
 
-Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds::Participant& participant,
-                                                                       double duration_s) {
+std::optional<BridgeQuiet> bridge_quiet(const nlohmann::ordered_json& status) {
+  if (!status.is_object()) return std::nullopt;
+  std::string silent;
+  std::string dropping;
+  const auto values = status.find("values");
+  if (values == status.end() || !values->is_array()) return std::nullopt;
+  for (const auto& kv : *values) {
+    if (!kv.is_object() || !kv.contains("key") || !kv["key"].is_string() || !kv.contains("value") ||
+        !kv["value"].is_string())
+      continue;
+    if (kv["key"] == "silent") silent = kv["value"].get<std::string>();
+    if (kv["key"] == "dropping") dropping = kv["value"].get<std::string>();
+  }
+  const auto message = status.find("message");
+  const std::string text = message != status.end() && message->is_string() ? message->get<std::string>() : "";
+  if (dropping == "true") return BridgeQuiet{"DROPPED OVER A BOUND", text};
+  if (silent == "true") return BridgeQuiet{"SILENT", text.empty() ? "silent" : text};
+  return std::nullopt;
+}
+
+Expected<std::map<std::string, BridgeQuiet>> listen_for_quiet_bridges(const dds::Participant& participant,
+                                                                      double duration_s) {
   const msgs::TypeInfo* type = msgs::all_types().find(kDiagnosticsType);
   if (type == nullptr || type->descriptor == nullptr) {
     return make_error(ErrorCode::kInternal,
@@ -104,7 +124,7 @@ Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds
   if (!reader) return std::move(reader).error();
   dds::UntypedSample sample(*type->descriptor);
   SampleDecoder decoder("hubctl", std::string(kDiagnosticsTopic));
-  std::map<std::string, std::string> silent;
+  std::map<std::string, BridgeQuiet> quiet;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration_s);
   while (std::chrono::steady_clock::now() < deadline) {
     const Result<bool> taken = reader->take_next(sample.data());
@@ -114,23 +134,21 @@ Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds
       continue;
     }
     const auto array = decoder.decode(*type, sample.data());
-    if (!array || !array->contains("status")) continue;
+    if (!array || !array->contains("status") || !(*array)["status"].is_array()) continue;
     for (const auto& status : (*array)["status"]) {
       std::string dds_topic;
-      std::string is_silent;
       for (const auto& kv : status.value("values", nlohmann::ordered_json::array())) {
         if (kv.value("key", "") == "dds_topic") dds_topic = kv.value("value", "");
-        if (kv.value("key", "") == "silent") is_silent = kv.value("value", "");
       }
-      if (dds_topic.empty() || is_silent.empty()) continue;  // not a hubbridge bridge
-      if (is_silent == "true") {
-        silent[dds_topic] = status.value("message", "silent");
+      if (dds_topic.empty()) continue;  // not a hubbridge bridge
+      if (auto why = bridge_quiet(status)) {
+        quiet[dds_topic] = std::move(*why);
       } else {
-        silent.erase(dds_topic);
+        quiet.erase(dds_topic);
       }
     }
   }
-  return silent;
+  return quiet;
 }
 
 }  // namespace hubrt::hubctl

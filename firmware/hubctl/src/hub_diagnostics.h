@@ -37,11 +37,22 @@ void absorb_diagnostics(const nlohmann::ordered_json& array, DiagnosticsByHub& h
 Expected<DiagnosticsByHub> listen_for_diagnostics(const dds::Participant& participant,
                                                   const std::set<std::string>& wanted, double timeout_s);
 
+// Why a bridged topic carries nothing: what `hubctl list` shows next to it.
+struct BridgeQuiet {
+  std::string label;    // "DROPPED OVER A BOUND" or "SILENT"
+  std::string message;  // the bridge's status message
+};
+
+// The BridgeQuiet of one hubbridge status (diagnostic_msgs/DiagnosticStatus as JSON), or nullopt
+// when it is not a bridge's or the bridge forwards: `dropping: true` (the ROS 1 side sends, the
+// bridge drops over a bound) comes ahead of `silent: true` (docs/ros1-bridge.md).
+std::optional<BridgeQuiet> bridge_quiet(const nlohmann::ordered_json& status);
+
 // Listens on /diagnostics for `duration_s` and returns, per DDS topic a hubbridge bridges from
-// ROS 1, why it is silent (its status message) — only the topics whose latest status says
-// `silent: true` (docs/ros1-bridge.md). A silent bridge's DDS writer is still there, so discovery
-// alone would show it like a live hub's. Errors: the DDS entities that could not be created.
-Expected<std::map<std::string, std::string>> listen_for_silent_bridges(const dds::Participant& participant,
-                                                                       double duration_s);
+// ROS 1, why it carries nothing — only the topics whose latest status says so (bridge_quiet). A
+// silent bridge's DDS writer is still there, so discovery alone would show it like a live hub's.
+// Errors: the DDS entities that could not be created.
+Expected<std::map<std::string, BridgeQuiet>> listen_for_quiet_bridges(const dds::Participant& participant,
+                                                                      double duration_s);
 
 }  // namespace hubrt::hubctl

@@ -1,5 +1,7 @@
 #include "render.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "hubrt/runtime/lifecycle.h"
@@ -19,6 +21,7 @@ std::string scalar(const nlohmann::ordered_json& v) {
     return s.empty() ? "''" : s;
   }
   if (v.is_number_float()) return fmt::format("{:g}", v.get<double>());
+  if (v.is_null()) return "NaN";  // only a non-finite float is null in a sample's JSON
   return safe_dump(v);
 }
 
@@ -72,6 +75,12 @@ std::string render_human(const nlohmann::ordered_json& value) {
   std::string out;
   render(value, 0, out);
   return out;
+}
+
+double number_or_nan(const nlohmann::ordered_json& object, std::string_view key) {
+  if (!object.is_object()) return std::nan("");
+  const auto it = object.find(std::string(key));
+  return it != object.end() && it->is_number() ? it->get<double>() : std::nan("");
 }
 
 }  // namespace hubrt::hubctl

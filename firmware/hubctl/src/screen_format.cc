@@ -1,9 +1,12 @@
 #include "screen_format.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "hubrt/base/utf8.h"
 
+#include "render.h"
 #include "sample_decoder.h"
 
 namespace hubrt::hubctl::screen {
@@ -160,7 +163,7 @@ OperatorView find_operator(const std::map<std::string, WatchedState>& states, co
     const auto& p = *panel;
     view.verified = p.value("operator_verified", false);
     view.name = text_of(p, "operator_name");
-    view.verified_for = p.value("verified_for", 0.0);
+    view.verified_for = number_or_nan(p, "verified_for");
     view.last_badge = text_of(p, "last_badge");
     view.last_badge_reason = text_of(p, "last_badge_reason");
     view.confirm_seq = p.value("confirm_seq", std::uint64_t{0});
@@ -177,7 +180,8 @@ nlohmann::ordered_json snapshot(const OperatorView& op, const std::optional<Inst
                      {"fresh", op.fresh},
                      {"verified", op.verified && op.fresh},
                      {"name", op.name},
-                     {"verified_for", op.verified_for},
+                     {"verified_for", std::isfinite(op.verified_for) ? nlohmann::ordered_json(op.verified_for)
+                                                                     : nlohmann::ordered_json(nullptr)},
                      {"last_badge", op.last_badge},
                      {"last_badge_reason", op.last_badge_reason},
                      {"confirm_seq", op.confirm_seq}};
@@ -198,7 +202,9 @@ nlohmann::ordered_json snapshot(const OperatorView& op, const std::optional<Inst
       row["fresh"] = w.last.value("fresh_msg", false) ? "yes" : "no";
     }
     row["lifecycle"] = w.received == 0 ? std::string("-") : lifecycle(w.last);
-    row["t_plus"] = w.last.is_object() ? w.last.value("t_plus", 0.0) : 0.0;
+    // A t_plus that is NaN (a peer may send anything) is null: JSON has no NaN; the page shows "-".
+    const double t_plus = number_or_nan(w.last, "t_plus");
+    row["t_plus"] = std::isfinite(t_plus) ? nlohmann::ordered_json(t_plus) : nlohmann::ordered_json(nullptr);
     std::string action;
     if (w.last.is_object() && w.last.contains("echo") && w.last["echo"].is_object())
       action = text_of(w.last["echo"], "action");

@@ -10,6 +10,7 @@
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/ros_names.h"
+#include "hubrt/dds/security_refusals.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/security/participant_security.h"
 
@@ -67,6 +68,9 @@ Expected<dds::Participant> join_domain(const DomainOptions& options, std::string
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) config->cyclone_xml = options.dds_config;
   if (!options.security_dir.empty()) {
+    // Before the participant: refused handshakes are counted (and logged rate-limited) from the
+    // start, so that a command finding nobody can say authentication failed (peer_authentication.h).
+    dds::count_security_refusals();
     const auto now = std::chrono::system_clock::now().time_since_epoch();
     auto secured = security::security_xml_for({options.security_dir, options.identity},
                                               std::chrono::duration_cast<std::chrono::seconds>(now).count());
@@ -96,9 +100,7 @@ Expected<const msgs::TypeInfo*> topic_type(const dds::Participant& participant, 
   if (!type_hint.empty()) {
     const msgs::TypeInfo* type = types.find(type_hint);
     if (type == nullptr) {
-      return make_error(ErrorCode::kInvalidArgument,
-                        fmt::format("unknown message type '{}'; did you mean: {}", type_hint,
-                                    fmt::join(types.suggest(type_hint), ", ")));
+      return make_error(ErrorCode::kInvalidArgument, types.unknown_type_message(type_hint));
     }
     return type;
   }

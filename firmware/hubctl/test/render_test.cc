@@ -1,5 +1,7 @@
 #include "render.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace hubrt::hubctl {
@@ -52,6 +54,18 @@ TEST(RenderHuman, LifecycleNamedOnlyInAHeader) {
 TEST(RenderHuman, ScalarListsStayOnOneLine) {
   const auto value = nlohmann::ordered_json::parse(R"({"error_list": ["a", "b c"]})");
   EXPECT_EQ(render_human(value), "error_list: [a, b c]\n");
+}
+
+// A float not measured is NaN on the wire and null in JSON (no NaN there); the human form says NaN.
+TEST(RenderHuman, ANullFloatReadsNaN) {
+  const auto value =
+      nlohmann::ordered_json::parse(R"({"drive_online": false, "position_mm": null, "target_mm": 250.5})");
+  EXPECT_EQ(render_human(value), "drive_online: false\nposition_mm: NaN\ntarget_mm: 250.5\n");
+  EXPECT_TRUE(std::isnan(number_or_nan(value, "position_mm")));
+  EXPECT_TRUE(std::isnan(number_or_nan(value, "missing")));
+  EXPECT_TRUE(std::isnan(number_or_nan(value, "drive_online")));
+  EXPECT_EQ(number_or_nan(value, "target_mm"), 250.5);
+  EXPECT_TRUE(std::isnan(number_or_nan(nlohmann::ordered_json(3), "x")));
 }
 
 }  // namespace

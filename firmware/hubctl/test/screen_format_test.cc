@@ -3,6 +3,8 @@
 // operator panel found in both layouts.
 #include "screen_format.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "hubrt/base/utf8.h"
@@ -127,6 +129,26 @@ TEST(ScreenSnapshot, StationRowsAndInitialHtmlEscaped) {
   EXPECT_EQ(html.find("<img"), std::string::npos);
   EXPECT_NE(html.find("<h2 id=\"instruction-step\">&lt;bolts&gt;</h2>"), std::string::npos);
   EXPECT_EQ(html.find("<bolts"), std::string::npos);
+}
+
+// Floats a peer sent as NaN arrive as null (msgs/json.h: JSON has no NaN): the screen neither
+// throws (nlohmann's value(key, 0.0) does on null) nor shows a number; the page prints "-".
+TEST(ScreenSnapshot, NaNFloatsBecomeNullNotAnError) {
+  const auto now = Clock::now();
+  std::map<std::string, WatchedState> states;
+  states.emplace(
+      "/operator_hub/state",
+      state_of("/operator_hub/state",
+               {{"fresh_msg", true},
+                {"t_plus", nullptr},
+                {"panel", {{"operator_verified", true}, {"operator_name", "Bo"}, {"verified_for", nullptr}}}},
+               now));
+  const auto op = find_operator(states, "", now);
+  EXPECT_TRUE(std::isnan(op.verified_for));
+  const auto snap = snapshot(op, std::nullopt, states, now);
+  EXPECT_TRUE(snap["station"][0]["t_plus"].is_null());
+  EXPECT_TRUE(snap["operator"]["verified_for"].is_null());
+  EXPECT_EQ(safe_json(snap).find("NaN"), std::string::npos);
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ function showOperator(op) {
     who.className = "unverified";
   }
   let badge = "";
-  if (op.verified) badge = "verified for " + Math.round(op.verified_for) + " s";
+  // verified_for and t_plus are null when the State carried NaN (JSON has none).
+  if (op.verified) badge = op.verified_for === null ? "verified" : "verified for " + Math.round(op.verified_for) + " s";
   if (op.last_badge === "rejected") badge += (badge ? " · " : "") + "last badge rejected: " + op.last_badge_reason;
   text("badge", badge);
   // Pressable either way: a press without a verified operator gets the server's refusal shown.
@@ -51,7 +52,7 @@ function showStation(station) {
     cell(row, s.topic);
     cell(row, s.fresh);
     cell(row, s.lifecycle);
-    cell(row, s.t_plus.toFixed(1));
+    cell(row, typeof s.t_plus === "number" ? s.t_plus.toFixed(1) : "-");
     cell(row, s.action === "" ? "-" : s.action);
     cell(row, s.errors.join(" · "), s.errors.length ? "errors" : "");
     rows.push(row);

@@ -23,6 +23,7 @@
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/oversize_samples.h"
+#include "hubrt/dds/security_refusals.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/runtime/cycle_runner.h"
 #include "hubrt/security/participant_security.h"
@@ -117,7 +118,7 @@ Expected<dds::DomainConfig> domain_config(const Options& options,
   if (options.loopback) config->cyclone_xml = dds::loopback_config_xml();
   if (!options.dds_config.empty()) config->cyclone_xml = options.dds_config;
   // Whatever the configuration, a peer cannot make this hub receive and hold samples larger than
-  // dds::kMaxSampleSizeBytes (README.md, "Hostile input").
+  // dds::kMaxSampleSizeBytes (README.md, "The wire contract").
   config->cyclone_xml = dds::with_sample_bounds(config->cyclone_xml);
   if (secured) {
     const auto now = std::chrono::system_clock::now().time_since_epoch();
@@ -172,11 +173,19 @@ int run(const Options& options) {
   install_crash_handlers();
   SystemdNotifier systemd;
   systemd.allow_startup(kStartupWatchdog);
-  // Before the first participant: /diagnostics counts the oversize samples Cyclone drops.
+  // Before the first participant: /diagnostics counts the oversize samples Cyclone drops and,
+  // secured, the peers DDS Security refuses (logged rate-limited: dds/security_refusals.h).
   dds::count_oversize_samples();
   const std::optional<security::SecurityChoice> secured = security_choice(options, *hub_config);
+  if (secured) dds::count_security_refusals();
   auto domain = domain_config(options, secured);
   if (!domain) return fail(domain.error().message, kExitConfig);
+  if (secured) {
+    // Checked before joining (domain_config: security_xml_for); say against which CA, so that a
+    // station's other participants can be told what they need.
+    spdlog::info("DDS Security as '{}': {}: checked before joining", secured->identity,
+                 security::describe_identity(security::credentials_in(secured->dir, secured->identity)));
+  }
 
   assembly::AssemblyRequest request;
   request.board_file = *board_file;
@@ -235,10 +244,18 @@ int run(const Options& options) {
     }
     if (secured && message.find("NOT_ALLOWED_BY_SECURITY") != std::string::npos) {
       // Access control refused a topic, reader or writer: the identity's permissions do not
-      // cover this hub file (hubctl security add --role hub --hub <this hub file>).
-      return fail(fmt::format("{}; the permissions of DDS Security identity '{}' do not allow it", message,
-                              secured->identity),
-                  kExitConfig);
+      // cover this hub file (hubctl security add --role hub --hub <this hub file>), or, on a
+      // simulation board, the simulation's topics (--sim: docs/deploy.md, "Securing a station").
+      const bool simulation = message.find("rt/sim/") != std::string::npos;
+      return fail(
+          fmt::format("{}; the permissions of DDS Security identity '{}' do not allow it{}", message,
+                      secured->identity,
+                      simulation ? fmt::format(" (a simulation board: give the identity the simulation's "
+                                               "topics, hubctl security add <dir> {} --role hub --hub <hub> "
+                                               "--sim)",
+                                               secured->identity)
+                                 : std::string()),
+          kExitConfig);
     }
     return fail(assembled.error().message, assembled.error().code == ErrorCode::kInvalidArgument ||
                                                    assembled.error().code == ErrorCode::kNotFound ||

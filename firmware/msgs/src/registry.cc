@@ -1,6 +1,9 @@
 #include "hubrt/msgs/registry.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "closest_names.h"
 
@@ -74,6 +77,27 @@ std::vector<std::string> TypeRegistry::suggest(std::string_view name, std::size_
     if (!t->ros_name.empty()) names.push_back(t->ros_name);
   }
   return detail::closest_names(name, names, max);
+}
+
+std::string TypeRegistry::unknown_type_message(std::string_view name) const {
+  const std::vector<std::string> close = suggest(name);
+  if (!close.empty())
+    return fmt::format("unknown message type '{}'; did you mean {}?", name, fmt::join(close, ", "));
+  // Nothing close: say what there is, by package ("hub_msgs/msg/*"), rather than an empty hint.
+  std::vector<std::string> packages;
+  for (const TypeInfo* t : types_) {
+    const std::string_view ros = t->ros_name;
+    const auto slash = ros.rfind('/');
+    if (slash == std::string_view::npos) continue;
+    std::string package = fmt::format("{}/*", ros.substr(0, slash));
+    if (std::find(packages.begin(), packages.end(), package) == packages.end())
+      packages.push_back(std::move(package));
+  }
+  if (packages.empty())
+    return fmt::format("unknown message type '{}'; this program holds no message types", name);
+  return fmt::format(
+      "unknown message type '{}'; no type of this program has a similar name (it holds {} types: {})", name,
+      types_.size(), fmt::join(packages, ", "));
 }
 
 }  // namespace hubrt::msgs

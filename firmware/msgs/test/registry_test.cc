@@ -46,6 +46,23 @@ TEST(AllTypes, SuggestsCloseNames) {
   EXPECT_TRUE(all_types().suggest("completely/unrelated/Thing").empty());
 }
 
+// Issue 34: with nothing close the error ended in an empty "did you mean:".
+TEST(TypeRegistry, UnknownTypeMessageSaysWhatThereIsWhenNothingIsClose) {
+  TypeRegistry reg;
+  ASSERT_TRUE(reg.add(reflected::types_of_dock()));
+  EXPECT_THAT(reg.unknown_type_message("hub_msgs/msg/DockStat"),
+              ::testing::StartsWith("unknown message type 'hub_msgs/msg/DockStat'; did you mean "));
+  EXPECT_THAT(reg.unknown_type_message("hub_msgs/msg/DockStat"), ::testing::EndsWith("?"));
+  const std::string far = reg.unknown_type_message("completely/unrelated/Thing");
+  EXPECT_EQ(
+      far,
+      "unknown message type 'completely/unrelated/Thing'; no type of this program has a similar name (it "
+      "holds 3 types: hub_msgs/msg/*)");
+  EXPECT_THAT(far, ::testing::Not(::testing::HasSubstr("did you mean")));
+  EXPECT_EQ(TypeRegistry().unknown_type_message("x/y"),
+            "unknown message type 'x/y'; this program holds no message types");
+}
+
 TEST(TypeRegistry, AddingTheSameListTwiceAddsNothing) {
   TypeRegistry reg;
   ASSERT_TRUE(reg.add(reflected::types_of_dock()));

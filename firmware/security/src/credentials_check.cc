@@ -88,4 +88,18 @@ Expected<void> check_credentials(const Credentials& files, std::int64_t now_unix
   return {};
 }
 
+std::string describe_identity(const Credentials& files) {
+  auto cert = detail::read_cert(files.identity_cert, "identity certificate");
+  auto ca = detail::read_cert(files.identity_ca, "identity CA certificate");
+  (void)detail::openssl_errors();
+  const std::string identity =
+      cert ? fmt::format("certificate {} ({}, valid until {})", detail::subject_text(cert->get()),
+                         files.identity_cert, detail::asn1_time_text(X509_get0_notAfter(cert->get())))
+           : fmt::format("certificate {} (unreadable)", files.identity_cert);
+  const std::string authority =
+      ca ? fmt::format("identity CA {} ({})", detail::subject_text(ca->get()), files.identity_ca)
+         : fmt::format("identity CA {} (unreadable)", files.identity_ca);
+  return identity + " of " + authority;
+}
+
 }  // namespace hubrt::security

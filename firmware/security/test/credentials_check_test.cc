@@ -47,6 +47,19 @@ TEST_F(CredentialsCheck, ExpiredIdentityIsRefusedWithItsDate) {
   EXPECT_EQ(checked.error().code, ErrorCode::kFailedPrecondition);
 }
 
+// What hubd logs and hubctl names when no peer authenticates: the certificate and the CA it needs.
+TEST_F(CredentialsCheck, DescribesTheIdentityAndItsCa) {
+  const std::string text = describe_identity(files());
+  EXPECT_EQ(text.rfind("certificate ", 0), 0U) << text;
+  EXPECT_NE(text.find("CN=dock_ecu"), std::string::npos) << text;
+  EXPECT_NE(text.find(files().identity_cert + ", valid until "), std::string::npos) << text;
+  EXPECT_NE(text.find(" of identity CA "), std::string::npos) << text;
+  EXPECT_NE(text.find("(" + files().identity_ca + ")"), std::string::npos) << text;
+  Credentials missing = files();
+  missing.identity_ca = station_.path() + "/nothing.pem";
+  EXPECT_NE(describe_identity(missing).find("nothing.pem (unreadable)"), std::string::npos);
+}
+
 TEST_F(CredentialsCheck, NotYetValidIdentityIsRefused) {
   ASSERT_TRUE(add_identity(station_.path(), "early", {kNow + kDay, kNow + 30 * kDay}, {}, {"rt/*"}));
   expect_refused(files("early"), kNow, "is not valid yet: valid from 2026-01-02");

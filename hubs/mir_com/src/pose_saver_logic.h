@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string_view>
 
@@ -59,7 +60,10 @@ class PoseSaverLogic {
   hal::FixedText<64> done_action_;
   hal::FixedText<64> saved_pose_;
   float saving_x_ = 0, saving_y_ = 0, saving_yaw_ = 0;  // the pose being posted
-  float saved_x_ = 0, saved_y_ = 0, saved_yaw_ = 0;
+  // The pose last saved; NaN (ROS's "not measured") until one is.
+  float saved_x_ = std::numeric_limits<float>::quiet_NaN();
+  float saved_y_ = std::numeric_limits<float>::quiet_NaN();
+  float saved_yaw_ = std::numeric_limits<float>::quiet_NaN();
   bool failed_ = false;
   hal::FixedText<160> failure_;
   Time now_{};

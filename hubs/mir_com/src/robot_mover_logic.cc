@@ -1,6 +1,7 @@
 #include "robot_mover_logic.h"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -235,10 +236,14 @@ void RobotMoverLogic::report(State& state, runtime::ErrorList& errors, Time now)
   state.set_answering(link_.answering(now));
   state.set_platform_state_id(static_cast<std::uint8_t>(status.state_id));
   state.set_platform_state(status.state_text.view());
-  state.set_x(status.x);
-  state.set_y(status.y);
-  state.set_yaw(status.yaw_deg);
-  state.set_battery(status.battery_percent);
+  // The platform's readings only while it answers: NaN (ROS's "not measured", as
+  // sensor_msgs/BatteryState) before its first answer and once its last one is too old.
+  const bool measured = link_.answering(now);
+  constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
+  state.set_x(measured ? status.x : kUnknown);
+  state.set_y(measured ? status.y : kUnknown);
+  state.set_yaw(measured ? status.yaw_deg : kUnknown);
+  state.set_battery(measured ? status.battery_percent : kUnknown);
   state.set_mission_id(mission_id_);
   state.set_mission_state(mission_state_.view());
   state.set_mission_text(status.mission_text.view());

@@ -3,6 +3,7 @@
 #include "pose_saver_logic.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "mir_logic_fixture.h"
 
@@ -40,10 +41,13 @@ TEST_F(PoseSaverTest, UpdateSavesTheCurrentPoseOncePerCommand) {
       run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(1));
   EXPECT_FALSE(state.busy());
   EXPECT_EQ(posts(), 0) << "nothing is saved without a command";
+  EXPECT_TRUE(std::isnan(state.x()) && std::isnan(state.y()) && std::isnan(state.yaw()))
+      << "no pose saved yet";
   const hub_msgs::PoseSaverCommand update = command("update", "here");
   state = run(logic, &update, seconds(2));
   EXPECT_EQ(state.done_action(), "updated") << errors_text();
   EXPECT_EQ(state.saved_pose(), "here");
+  EXPECT_EQ(state.x(), 0.0F) << "the platform's pose, measured";
   EXPECT_FALSE(state.busy());
   EXPECT_EQ(posts(), 1) << "a repeated command is carried out once";
   const auto post = std::find_if(device_->sent().begin(), device_->sent().end(),

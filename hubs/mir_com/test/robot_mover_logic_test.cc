@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "mir_logic_fixture.h"
@@ -177,8 +178,12 @@ TEST_P(RobotMoverFaultTest, IsAClearErrorAndTheNodeRecovers) {
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kDevicesMissing);
   EXPECT_FALSE(state.answering());
   EXPECT_TRUE(state.safe_hold());
+  // Not answering: the platform's pose and battery are not measured (NaN), not a last value.
+  EXPECT_TRUE(std::isnan(state.x()) && std::isnan(state.y()) && std::isnan(state.yaw()));
+  EXPECT_TRUE(std::isnan(state.battery()));
   device_->set_fault(DeviceFault::kNone);
   state = run<RobotMoverLogic, hub_msgs::RobotMoverCommand>(logic, nullptr, seconds(2));
+  EXPECT_FALSE(std::isnan(state.battery())) << "measured again";
   EXPECT_EQ(logic.condition(), runtime::NodeCondition::kOk);
   EXPECT_TRUE(errors_.empty()) << errors_text();
   EXPECT_EQ(platform_->snapshot().state_id, 4);

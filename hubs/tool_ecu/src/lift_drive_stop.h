@@ -1,9 +1,10 @@
 // The lift drive told to stop once the Tool ECU's hub process has ended (`hubd --safe-outputs`,
 // the unit's ExecStopPost): one Modbus write of the control word with every bit cleared — enable
 // 0 switches the power stage off at once and the lift holds on its brake
-// (docs/protocols/lift-drive-modbus.md, "Control word bits"). Best effort: a drive that does not
-// answer within the timeout is left to its own communication watchdog (drive_watchdog_ms), which
-// the hub wrote on every exchange and which stops it within that time of the hub's last request.
+// (docs/protocols/lift-drive-modbus.md, "Holding registers": the control word bits). Best effort:
+// a drive that does not answer within the timeout is left to its own communication watchdog
+// (drive_watchdog_ms), which the hub wrote on every exchange and which stops it within that time
+// of the hub's last request.
 #pragma once
 
 #include "hubrt/base/time.h"

@@ -1,6 +1,7 @@
 #include "lift_logic.h"
 
 #include <cstdlib>
+#include <limits>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -130,10 +131,11 @@ void LiftLogic::enter_safe_state() noexcept {
 void LiftLogic::report_reading(State& state, bool current) const noexcept {
   if (!current) {
     // The last reading is older than its validity: nothing of it is shown as current (the wire
-    // contract's "unknown": "", 0, false). Above all `moving` is not true from it, and not "at".
+    // contract's "unknown": "", NaN, false; NaN is ROS's "not measured", sensor_msgs/BatteryState).
+    // Above all `moving` is not true from it, and not "at".
     state.set_at(std::string_view());
-    state.set_position_mm(0.0F);
-    state.set_speed_mm_s(0.0F);
+    state.set_position_mm(std::numeric_limits<float>::quiet_NaN());
+    state.set_speed_mm_s(std::numeric_limits<float>::quiet_NaN());
     state.set_enabled(false);
     state.set_moving(false);
     state.set_in_position(false);

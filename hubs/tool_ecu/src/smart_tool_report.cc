@@ -1,5 +1,7 @@
 // The smart tool's State: the run, the interlock inputs, the controller's status (or "unknown"
 // when it is stale), the last tightening's result with its reasons as text, and the errors list.
+#include <limits>
+
 #include "reading_age.h"
 #include "smart_tool_logic.h"
 
@@ -54,13 +56,14 @@ void SmartToolLogic::report_status(State& state, Time now) noexcept {
   state.set_status_fresh(fresh);
   state.set_status_age_ms(reading_age_ms(controller_.has_status(), controller_.status_received_at(), now));
   if (!fresh) {
-    // A status older than its validity is not shown as current (the wire contract's "unknown").
+    // A status older than its validity is not shown as current (the wire contract's "unknown";
+    // NaN for a reading not measured, as ROS's sensor_msgs/BatteryState).
     alarms_text_.assign("unknown");
     selected_text_.assign("unknown");
     state.set_controller_alarms(alarms_text_.view());
     state.set_selected_program(selected_text_.view());
-    state.set_torque_nm(0.0F);
-    state.set_angle_deg(0.0F);
+    state.set_torque_nm(std::numeric_limits<float>::quiet_NaN());
+    state.set_angle_deg(std::numeric_limits<float>::quiet_NaN());
     return;
   }
   const st::Status& status = controller_.status();
@@ -101,8 +104,10 @@ void SmartToolLogic::report(State& state, runtime::ErrorList& errors, Time now) 
                          ? std::string_view(settings_.programs[static_cast<std::size_t>(last_.program)].name)
                          : std::string_view());
   result.set_ok(last_.ok);
-  result.set_torque_nm(static_cast<float>(st::to_newton_metres(last_.torque_cnm)));
-  result.set_angle_deg(static_cast<float>(st::to_degrees(last_.angle_ddeg)));
+  // Before the first run there is no final torque or angle: NaN, not a measured 0.
+  constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+  result.set_torque_nm(last_.valid ? static_cast<float>(st::to_newton_metres(last_.torque_cnm)) : kNone);
+  result.set_angle_deg(last_.valid ? static_cast<float>(st::to_degrees(last_.angle_ddeg)) : kNone);
   join_bits(reasons_text_, last_.reasons, kReasonNames);
   result.set_nok_reasons(reasons_text_.view());
   result.set_run_counter(last_.run_counter);

@@ -2,6 +2,7 @@
 // Modbus device in front of the drive model). The HAL's threaded implementation against the real
 // libmodbus server is tested in hal/common/test/threaded_async_modbus_test.cc; how the logic meets
 // the asynchronous device in lift_logic_async_test.cc.
+#include <cmath>
 #include <string>
 
 #include <fmt/format.h>
@@ -230,8 +231,8 @@ TEST_F(LiftLogicTest, AReadingOlderThanItsValidityIsUnknownUntilAFreshOneConfirm
   EXPECT_EQ(state_.fault_code(), 0);
   EXPECT_EQ(state_.fault_text(), "unknown");
   EXPECT_EQ(state_.at(), "");
-  EXPECT_EQ(state_.position_mm(), 0.0F);
-  EXPECT_EQ(state_.speed_mm_s(), 0.0F);
+  EXPECT_TRUE(std::isnan(state_.position_mm())) << "not measured: NaN, not a position 0";
+  EXPECT_TRUE(std::isnan(state_.speed_mm_s()));
   EXPECT_EQ(state_.target(), "home") << "the command's target is the hub's own, not a reading";
   EXPECT_EQ(errors().find("stopped"), std::string::npos) << "nobody knows it stopped: " << errors();
   EXPECT_NE(errors().find(fmt::format("lift motion unknown: last seen at {:.1f} mm, moving; the drive's own "

@@ -2,6 +2,8 @@
 // frame older than its validity (350 ms, the heartbeat's limit; the controller sends one every
 // 100 ms) is never shown as the controller's present alarms, program, torque and angle, and an
 // input that could not be read this cycle is flagged (inputs_known).
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "reading_age.h"
@@ -19,8 +21,8 @@ void expect_unknown(const hub_msgs::SmartToolState& state) {
   EXPECT_FALSE(state.status_fresh());
   EXPECT_EQ(state.controller_alarms(), "unknown");
   EXPECT_EQ(state.selected_program(), "unknown");
-  EXPECT_EQ(state.torque_nm(), 0.0F);
-  EXPECT_EQ(state.angle_deg(), 0.0F);
+  EXPECT_TRUE(std::isnan(state.torque_nm())) << "not measured: NaN, not 0 Nm";
+  EXPECT_TRUE(std::isnan(state.angle_deg()));
 }
 
 TEST_F(SmartToolLogicTest, AStatusOlderThanItsValidityIsUnknownAndFreshOneBringsTheValuesBack) {
@@ -71,6 +73,10 @@ TEST_F(SmartToolLogicTest, BeforeTheFirstStatusItsAgeSaysNeverAndItsValuesAreUnk
   cycles(nullptr, 3);
   EXPECT_EQ(state_.status_age_ms(), kNeverRead);
   expect_unknown(state_);
+  // No run yet: its final torque and angle were never measured either.
+  EXPECT_EQ(state_.last_result().program(), "");
+  EXPECT_TRUE(std::isnan(state_.last_result().torque_nm()));
+  EXPECT_TRUE(std::isnan(state_.last_result().angle_deg()));
 }
 
 TEST_F(SmartToolLogicTest, AnInputThatCannotBeReadThisCycleIsFlaggedUnknown) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hubrt/dds/peer_authentication_watch.h"
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/runtime/hub.h"
@@ -26,7 +27,7 @@ namespace hubrt::assembly {
 
 class DiagnosticsStage final : public runtime::CycleStage {
  public:
-  static constexpr std::size_t kMaxValues = 24;
+  static constexpr std::size_t kMaxValues = 28;
 
   // `hub` must already have all its nodes. `interval` between two publications. A positive
   // `command_timeout` is published too (key command_timeout_ms), so that tools such as
@@ -48,8 +49,11 @@ class DiagnosticsStage final : public runtime::CycleStage {
   struct Endpoint {
     dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic;
     dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer;
+    // In a process that counts DDS Security refusals (dds/security_refusals.h, a secured hubd):
+    // the remote participants that do not authenticate (dds/peer_authentication_watch.h).
+    std::unique_ptr<dds::PeerAuthenticationWatch> peers;
   };
-  // Errors: the DDS topic or writer that could not be created.
+  // Errors: the DDS topic, writer or discovery readers that could not be created.
   static Expected<Endpoint> open_endpoint(const dds::Participant& participant);
   // As create() above, on an endpoint opened before. Never fails.
   static std::unique_ptr<DiagnosticsStage> create(
@@ -73,7 +77,8 @@ class DiagnosticsStage final : public runtime::CycleStage {
   };
 
   DiagnosticsStage(dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic,
-                   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer, const runtime::Hub& hub,
+                   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer,
+                   std::unique_ptr<dds::PeerAuthenticationWatch> peers, const runtime::Hub& hub,
                    std::string hardware_id, Duration interval, Duration command_timeout,
                    Duration immediate_state_interval, const std::atomic<std::uint64_t>* log_lines_dropped);
   void fill_hub_status(const Instant& now) noexcept;
@@ -94,6 +99,7 @@ class DiagnosticsStage final : public runtime::CycleStage {
 
   dds::Topic<diagnostic_msgs_msg_dds__DiagnosticArray_> topic_;
   dds::Writer<diagnostic_msgs_msg_dds__DiagnosticArray_> writer_;
+  std::unique_ptr<dds::PeerAuthenticationWatch> peers_;
   const runtime::Hub& hub_;
   std::string hardware_id_;
   Duration interval_;

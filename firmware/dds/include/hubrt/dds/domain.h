@@ -48,7 +48,7 @@ std::string resource_bounds_elements_xml();
 // The largest serialised sample a hubrt process sends or accepts. The largest legitimate one is
 // a hub-layout State with every error list full (Tool ECU: three lists of 16 entries of up to 191
 // bytes, ~9.4 KiB, ~12 KiB in all) or a /diagnostics array (~1.7 KiB per node): 64 KiB leaves
-// more than 5x that. README.md, "Hostile input".
+// more than 5x that. README.md, "The wire contract".
 inline constexpr std::uint32_t kMaxSampleSizeBytes = 64 * 1024;
 
 // A Cyclone XML source that sets Internal/MaxSampleSize to kMaxSampleSizeBytes: Cyclone then

@@ -27,8 +27,9 @@ namespace hubrt::dds {
 // Thread-safe.
 void count_oversize_samples() noexcept;
 
-// Where the counting sink sends each of Cyclone's log lines (header, message and newline), instead
-// of writing them to stderr itself: hubd's bounded log queue, so that a Cyclone thread that logs —
+// Where the counting sink sends each of Cyclone's log lines (header, message and newline) and the
+// rate-limited lines of security refusals (security_refusals.h), instead of writing them to stderr
+// itself: hubd's bounded log queue, so that a Cyclone thread that logs —
 // or the cycle inside a Cyclone call that logs — never waits for a stderr nobody reads. nullptr:
 // stderr (the default). `forward` must not block and must be callable from any thread; it is
 // called under Cyclone's log lock. Thread-safe.

@@ -36,6 +36,10 @@ class TypeRegistry {
   // mean" messages; empty when nothing is close.
   [[nodiscard]] std::vector<std::string> suggest(std::string_view name, std::size_t max = 3) const;
 
+  // "unknown message type 'X'" and then what helps: "; did you mean A, B?" when names are close,
+  // else the packages this registry holds types of ("; this program holds hub_msgs/msg/*, ...").
+  [[nodiscard]] std::string unknown_type_message(std::string_view name) const;
+
  private:
   std::vector<const TypeInfo*> types_;
   std::unordered_map<std::string_view, const TypeInfo*> by_dds_name_;

@@ -21,6 +21,13 @@ namespace hubrt::security {
 // every message names the file.
 Expected<void> check_credentials(const Credentials& files, std::int64_t now_unix);
 
+// What a participant with these credentials is, for the messages that say its chain was checked
+// and for the ones that say a peer did not authenticate it: "certificate O=...,CN=dock_ecu
+// (<identity cert>, valid until <date>) of identity CA O=...,CN=... (<identity CA file>)". Only
+// authenticates with peers whose identity CA is that one. Reads the two certificates; a file that
+// cannot be read is named as such (check_credentials says why).
+std::string describe_identity(const Credentials& files);
+
 // The folder holding Debian's Cyclone security plugins (libddsc0debian's
 // libdds_security_{auth,ac,crypto}.so): $HUBRT_DDS_SECURITY_PLUGINS when set, else the one
 // under the library path of the architecture hubrt was built for
