@@ -41,10 +41,10 @@ struct HubSecurity {
   std::string identity;
 };
 
-// The hub's black box (docs/hub-config.md, "blackbox"): the last `span` of its commands, States
-// and /diagnostics in `memory_bytes` allocated at start, written as MCAP into `directory` (empty:
-// hubd's default, $HUBRT_BLACKBOX_DIR or /var/lib/hubrt/blackbox) whose files of this hub are kept
-// under `directory_bytes`.
+// The hub's black box (docs/recording.md, "A hub's black box"; its key in docs/hub-config.md): the
+// last `span` of its commands, States and /diagnostics in `memory_bytes` allocated at start,
+// written as MCAP into `directory` (empty: hubd's default, $HUBRT_BLACKBOX_DIR or
+// /var/lib/hubrt/blackbox) whose files of this hub are kept under `directory_bytes`.
 struct HubBlackBox {
   bool enabled = true;
   Duration span = std::chrono::seconds(60);
