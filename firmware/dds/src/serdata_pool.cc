@@ -11,6 +11,7 @@
 // ddsi_cdrstream.h), laid out as serdata_default lays them out.
 #include "serdata_pool.h"
 
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -229,6 +230,12 @@ bool SerdataPool::op_eqkey(const ddsi_serdata* /*a*/, const ddsi_serdata* /*b*/)
 }
 
 void SerdataPool::op_free(ddsi_serdata* d) {
+  // The last reference is gone: ddsi_serdata_unref took the count to 0 with a full barrier, but
+  // when a thread of Debian's uninstrumented libddsc was the last, ThreadSanitizer saw none of it.
+  // This acquire load orders every earlier unref (ours in hubrt code, on the same atomic) before
+  // the block is reused or its pool freed, as the reference-count idiom needs, and lets TSan see
+  // it (StationTapTest: the tap's unref, then Cyclone's gc thread freeing the pool, was reported).
+  static_cast<void>(std::atomic_ref<std::uint32_t>(d->refc.v).load(std::memory_order_acquire));
   Block* block = block_of(d);
   block->pool->give_back(block);
 }
