@@ -12,6 +12,8 @@
 #include "hubrt/dds/entity.h"
 #include "hubrt/dds/retcode.h"
 
+#include "sertype_probe.h"
+
 namespace hubrt::dds {
 namespace {
 
@@ -93,6 +95,7 @@ Expected<DiscoverySnapshot> discover(const Participant& participant) {
         std::pair{DDS_BUILTIN_TOPIC_DCPSSUBSCRIPTION, EndpointDirection::kReader}}) {
     auto endpoints = take_builtin<dds_builtintopic_endpoint_t>(
         participant, topic, [&, dir = direction](const dds_builtintopic_endpoint_t& e) {
+          if (detail::is_sertype_probe(e.qos)) return;  // there only while a writer is made
           DiscoveredEndpoint entry;
           entry.direction = dir;
           entry.topic_name = e.topic_name != nullptr ? e.topic_name : "";

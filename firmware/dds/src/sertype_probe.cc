@@ -1,5 +1,8 @@
 #include "sertype_probe.h"
 
+#include <cstdint>
+#include <cstring>
+
 #include <dds/ddsi/ddsi_serdata.h>
 
 #include "hubrt/dds/sample.h"
@@ -38,6 +41,19 @@ class ScopedQos {
 constexpr const char* kProbePartition = "hubrt_sertype_probe";
 
 }  // namespace
+
+bool is_sertype_probe(const dds_qos_t* qos) noexcept {
+  std::uint32_t n = 0;
+  char** names = nullptr;
+  if (qos == nullptr || !dds_qget_partition(qos, &n, &names)) return false;
+  bool probe = false;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    probe = probe || std::strcmp(names[i], kProbePartition) == 0;
+    dds_free(names[i]);
+  }
+  dds_free(names);
+  return probe;
+}
 
 const struct ddsi_sertype* probe_topic_sertype(dds_entity_t participant, dds_entity_t topic,
                                                const dds_topic_descriptor_t& descriptor) {

@@ -14,4 +14,9 @@ namespace hubrt::dds::detail {
 const struct ddsi_sertype* probe_topic_sertype(dds_entity_t participant, dds_entity_t topic,
                                                const dds_topic_descriptor_t& descriptor);
 
+// Whether a discovered endpoint's QoS is a probe's (its partition): a watch of the domain's writers
+// skips them, for they exist only for the moment a writer or codec is made, anywhere in the domain
+// (a tap that saw one announced a topic with two writers where there was one).
+bool is_sertype_probe(const dds_qos_t* qos) noexcept;
+
 }  // namespace hubrt::dds::detail

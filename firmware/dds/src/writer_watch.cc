@@ -9,6 +9,7 @@
 #include <dds/dds.h>
 
 #include "builtin_reader.h"
+#include "sertype_probe.h"
 
 namespace hubrt::dds {
 namespace {
@@ -168,7 +169,8 @@ void WriterWatch::refresh() noexcept {
                                                  [](const dds_builtintopic_participant_t&) { return true; });
     const int new_watched = read_new<dds_builtintopic_endpoint_t>(
         publications_.get(), publications_capacity_, [this](const dds_builtintopic_endpoint_t& e) {
-          return Guid::from(e.participant_key) != self_ && e.topic_name != nullptr && filter_(e.topic_name);
+          return Guid::from(e.participant_key) != self_ && e.topic_name != nullptr && filter_(e.topic_name) &&
+                 !detail::is_sertype_probe(e.qos);
         });
     if (gone_participants < 0 || gone_writers < 0 || new_participants < 0 || new_watched < 0)
       return;  // being deleted
@@ -222,7 +224,9 @@ void WriterWatch::refresh() noexcept {
     const bool read_publications = read_alive<dds_builtintopic_endpoint_t>(
         publications_.get(), publications_capacity_, [&](const dds_builtintopic_endpoint_t& e) {
           const Guid participant = Guid::from(e.participant_key);
-          if (participant == self_ || e.topic_name == nullptr || !filter_(e.topic_name)) return;
+          if (participant == self_ || e.topic_name == nullptr || !filter_(e.topic_name) ||
+              detail::is_sertype_probe(e.qos))
+            return;
           WatchedWriter writer;
           writer.topic_name = e.topic_name;
           if (e.type_name != nullptr) writer.type_name = e.type_name;
