@@ -33,7 +33,7 @@ def log(message):
 class Live:
     def __init__(self, tier):
         self.tier = tier
-        self.rsp_msg = os.path.join(tier.source, "ros2/hub_msgs/msg/RspCommand.msg")
+        self.rsp_msg = os.path.join(tier.source, "hubs/rsp_ecu/msg/RspCommand.msg")
         self.layout = os.path.join(tier.source, "docs/foxglove-layout.json")
 
     def server(self, name, *extra):
