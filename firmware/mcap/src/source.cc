@@ -48,7 +48,8 @@ class MemorySource final : public ByteSource {
   [[nodiscard]] const std::string& name() const noexcept override { return name_; }
   Expected<std::size_t> read_at(std::uint64_t offset, std::span<std::uint8_t> out) override {
     if (offset >= bytes_.size()) return std::size_t{0};
-    const std::size_t n = std::min<std::uint64_t>(out.size(), bytes_.size() - offset);
+    // offset < bytes_.size() here, so the rest fits a size_t on a 32-bit board too.
+    const std::size_t n = std::min(out.size(), static_cast<std::size_t>(bytes_.size() - offset));
     if (n == 0) return n;  // out.data() may be null, which memcpy's arguments must not be
     std::memcpy(out.data(), bytes_.data() + offset, n);
     return n;

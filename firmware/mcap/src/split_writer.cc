@@ -34,7 +34,9 @@ Expected<SplitWriter> SplitWriter::create(std::string path, WriterOptions option
         fmt::format("a split size of {} bytes; it must be at least {}", split.max_bytes, kMinSplitBytes));
   // Chunks of a quarter of the limit at most, so that a file ends close to it, not a chunk short.
   if (split.max_bytes != 0)
-    options.chunk_bytes = std::min<std::uint64_t>(options.chunk_bytes, split.max_bytes / 4);
+    options.chunk_bytes =  // no more than it was: fits its type on a 32-bit board too
+        static_cast<decltype(options.chunk_bytes)>(
+            std::min<std::uint64_t>(options.chunk_bytes, split.max_bytes / 4));
   const bool splitting = split.max_bytes != 0 || split.max_duration.count() != 0;
   auto first = Writer::create(splitting ? split_file_name(path, 0) : path, options);
   if (!first) return std::move(first).error();
