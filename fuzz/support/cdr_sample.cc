@@ -32,11 +32,14 @@ const dds::Participant& participant() {
 }  // namespace
 
 CdrDecoder& CdrDecoder::of(const msgs::TypeInfo& type) {
+  // The participant first: statics are destroyed in reverse order, and a codec must go before the
+  // participant it was made on (Cyclone aborted in ddsi_sertype_unref at exit, after every run).
+  const dds::Participant& on = participant();
   static std::map<const msgs::TypeInfo*, std::unique_ptr<CdrDecoder>> decoders;
   auto found = decoders.find(&type);
   if (found != decoders.end()) return *found->second;
   if (type.descriptor == nullptr) die(std::string(type.c_name) + " is not a topic type");
-  auto codec = dds::CdrCodec::create(participant(), *type.descriptor);
+  auto codec = dds::CdrCodec::create(on, *type.descriptor);
   if (!codec) die(codec.error().message);
   auto decoder = std::unique_ptr<CdrDecoder>(new CdrDecoder(type, std::move(*codec)));
   return *decoders.emplace(&type, std::move(decoder)).first->second;
