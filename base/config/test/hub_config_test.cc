@@ -220,8 +220,9 @@ TEST(HubConfig, BlackBoxDefaultsAndBounds) {
     auto refused =
         parse(std::string("hub: dock_ecu\nnodes:\n  dock: {type: dock, slots: []}\n") + bad + "\n");
     EXPECT_FALSE(refused) << bad;
-    if (!refused)
+    if (!refused) {
       EXPECT_NE(refused.error().message.find("hub.yaml:4"), std::string::npos) << refused.error().message;
+    }
   }
 }
 

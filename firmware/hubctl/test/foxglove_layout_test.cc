@@ -170,8 +170,9 @@ TEST(FoxgloveLayout, EveryPathExistsInTheStationsTypes) {
   EXPECT_TRUE(plotted.count("/tool_ecu/tool/state.torque_nm")) << "the smart tool's torque";
   // Every node's lifecycle: each State topic of the station.
   for (const auto& [topic, type] : topics) {
-    if (topic != hub_api::kDiagnosticsTopic)
+    if (topic != hub_api::kDiagnosticsTopic) {
       EXPECT_TRUE(lifecycles.count(topic)) << topic << "'s lifecycle is not shown";
+    }
   }
 }
 
