@@ -301,8 +301,8 @@ TEST_P(HubdHeartbeatHoldsTest, TheHeartbeatCommandsTimeoutAndSigtermHold) {
 INSTANTIATE_TEST_SUITE_P(Hazards, HubdHeartbeatHoldsTest,
                          ::testing::Values(Hazard::kStalledLogPipe, Hazard::kFullDisk,
                                            Hazard::kStoppedSubscriber),
-                         [](const ::testing::TestParamInfo<Hazard>& info) {
-                           return hazard_name(info.param);
+                         [](const ::testing::TestParamInfo<Hazard>& param) {
+                           return hazard_name(param.param);
                          });
 
 }  // namespace

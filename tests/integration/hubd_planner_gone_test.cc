@@ -12,10 +12,10 @@
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/topic.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/time_to_safe.h"
 
 #include "dock_messages.h"
-#include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
 namespace {
@@ -97,8 +97,8 @@ TEST_P(HubdPlannerGoneTest, TheNodeGoesSafeOneTimeoutAfterTheLastCommand) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Planner, HubdPlannerGoneTest, ::testing::Values(SIGKILL, SIGSTOP),
-                         [](const ::testing::TestParamInfo<int>& info) {
-                           return info.param == SIGKILL ? std::string("Killed") : std::string("Stopped");
+                         [](const ::testing::TestParamInfo<int>& param) {
+                           return param.param == SIGKILL ? std::string("Killed") : std::string("Stopped");
                          });
 
 }  // namespace

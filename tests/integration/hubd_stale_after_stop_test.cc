@@ -24,10 +24,10 @@
 #include "hubrt/dds/topic.h"
 #include "hubrt/dds/writer.h"
 #include "hubrt/msgs/typed.h"
+#include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/time_to_safe.h"
 
 #include "dock_messages.h"
-#include "hubrt/test_support/hub_process.h"
 #include "rsp_messages.h"
 
 namespace hubrt::integration {
@@ -243,8 +243,8 @@ TEST_P(HubdStaleAfterStopTest, CommandsQueuedWhileStoppedNeverActAfterTheContinu
 }
 
 INSTANTIATE_TEST_SUITE_P(Clocks, HubdStaleAfterStopTest, ::testing::Values(true, false),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return info.param ? std::string("Synced") : std::string("NotSynced");
+                         [](const ::testing::TestParamInfo<bool>& param) {
+                           return param.param ? std::string("Synced") : std::string("NotSynced");
                          });
 
 }  // namespace

@@ -111,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Step{"hub_back", true, -kStep, "rejected command: stamped 10."},
                       Step{"planner_forward", false, kStep, "rejected command: stamped 10."},
                       Step{"planner_back", false, -kStep, "stale command: written 10."}),
-    [](const ::testing::TestParamInfo<Step>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<Step>& param) { return std::string(param.param.name); });
 
 }  // namespace
 }  // namespace hubrt::runtime::testing

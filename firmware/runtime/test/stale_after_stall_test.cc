@@ -154,8 +154,8 @@ TEST_P(StaleAfterStallTest, AStallShorterThanTheTimeoutDiscardsNothing) {
 
 INSTANTIATE_TEST_SUITE_P(ClocksSyncedOrNot, StaleAfterStallTest,
                          ::testing::Values(ClockTolerance(milliseconds(50)), ClockTolerance(std::nullopt)),
-                         [](const ::testing::TestParamInfo<ClockTolerance>& info) {
-                           return info.param.has_value() ? std::string("Synced") : std::string("NotSynced");
+                         [](const ::testing::TestParamInfo<ClockTolerance>& param) {
+                           return param.param.has_value() ? std::string("Synced") : std::string("NotSynced");
                          });
 
 }  // namespace
