@@ -29,6 +29,7 @@ def blackbox_section(sections, blackbox):
         "",
         "What it costs: a memcpy of each State and command (a few hundred bytes) into the ring under a lock "
         "held for the copy only, no allocation (hubrt_hub_process_alloc_test runs with it on); the RSS is the "
-        "ring, allocated and touched at start (blackbox.memory_kib, 8 MiB by default).",
+        "ring, allocated and touched at start (blackbox.memory_kib; by default sized for 60 s of the hub's "
+        "own rates, blackbox/ring_size.h: 8 MiB for every hub until 2026-11-29).",
     ]
     sections.append("\n".join(lines) + "\n")

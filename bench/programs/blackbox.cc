@@ -108,7 +108,7 @@ int run(const std::string& out_file, const std::vector<double>& rates, double wa
   if (!participant) return fmt::print(stderr, "{}\n", participant.error().message), 1;
   nlohmann::ordered_json result;
   result["hub"] = "Dock ECU, development build, host-sim, fake backend; planner at 100 Hz";
-  result["black_box"] = "hub file defaults: 60 s in 8 MiB";
+  result["black_box"] = "hub file defaults: the last 60 s, in a ring sized from the hub's rates";
   result["rates"] = nlohmann::ordered_json::array();
   for (const double rate : rates) {
     auto measured = measure(*participant, rate, warmup_s, turns);

@@ -96,9 +96,11 @@ Expected<HubBlackBox> blackbox(const YamlMap& root) {
   out.span = std::chrono::seconds(*seconds);
   // 64 KiB to 1 GiB: below that a single hub-layout State would not fit (the ring keeps entries of
   // up to a quarter of itself).
-  auto memory = map->integer_or("memory_kib", 8192, 64, 1 << 20);
-  if (!memory) return std::move(memory).error();
-  out.memory_bytes = static_cast<std::size_t>(*memory) * 1024;
+  if (map->has("memory_kib")) {
+    auto memory = map->integer("memory_kib", 64, 1 << 20);
+    if (!memory) return std::move(memory).error();
+    out.memory_bytes = static_cast<std::size_t>(*memory) * 1024;
+  }
   auto directory = map->string_or("directory", "");
   if (!directory) return std::move(directory).error();
   if (!directory->empty() && directory->front() != '/')

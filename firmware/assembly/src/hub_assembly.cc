@@ -9,6 +9,7 @@
 #include "hubrt/assembly/diagnostics_stage.h"
 #include "hubrt/assembly/hub_types.h"
 #include "hubrt/assembly/linux_device_libraries.h"
+#include "hubrt/blackbox/ring_size.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/hal/board/board_requirements.h"
 #include "hubrt/hal/linux/backend.h"
@@ -118,7 +119,11 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
     blackbox::BlackBoxOptions box;
     box.hub_name = out->config.name;
     box.span = settings.span;
-    box.memory_bytes = settings.memory_bytes;
+    // Unless the hub file says, a span of what this hub records at its own rates (a fixed 8 MiB,
+    // touched at start, was most of a board hub's memory).
+    box.memory_bytes = settings.memory_bytes.value_or(blackbox::ring_bytes_for(
+        settings.span, blackbox::hub_recorded_rates(out->config.nodes.size(), out->config.rate_hz,
+                                                    out->config.diagnostics_hz)));
     box.directory = settings.directory.empty() ? *request.black_box_directory : settings.directory;
     box.directory_bytes = settings.directory_bytes;
     auto made = blackbox::BlackBox::create(std::move(box));

@@ -270,6 +270,13 @@ int run(const Options& options) {
   malloc_trim(0);
 
   spdlog::info("running {}", summary);
+  if (const auto& box = (*assembled)->black_box) {
+    spdlog::info(
+        "black box: the last {} s in {} KiB{}",
+        std::chrono::duration_cast<std::chrono::seconds>((*assembled)->config.blackbox.span).count(),
+        box->ring().capacity() / 1024,
+        (*assembled)->config.blackbox.memory_bytes ? " (memory_kib)" : ", sized from the hub's rates");
+  }
   systemd.ready(summary);
   runtime::RunHooks hooks;
   hooks.after_cycle = [&systemd](const Instant& now) { systemd.cycle_done(now.mono); };

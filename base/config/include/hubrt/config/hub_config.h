@@ -42,13 +42,14 @@ struct HubSecurity {
 };
 
 // The hub's black box (docs/recording.md, "A hub's black box"; its key in docs/hub-config.md): the
-// last `span` of its commands, States and /diagnostics in `memory_bytes` allocated at start,
-// written as MCAP into `directory` (empty: hubd's default, $HUBRT_BLACKBOX_DIR or
-// /var/lib/hubrt/blackbox) whose files of this hub are kept under `directory_bytes`.
+// last `span` of its commands, States and /diagnostics in `memory_bytes` allocated at start (absent:
+// sized from the hub's rates, blackbox::ring_bytes_for), written as MCAP into `directory` (empty: hubd's
+// default, $HUBRT_BLACKBOX_DIR or /var/lib/hubrt/blackbox) whose files of this hub are kept under
+// `directory_bytes`.
 struct HubBlackBox {
   bool enabled = true;
   Duration span = std::chrono::seconds(60);
-  std::size_t memory_bytes = std::size_t{8} << 20;
+  std::optional<std::size_t> memory_bytes;  // `memory_kib`; absent: sized from the rates
   std::string directory;
   std::uint64_t directory_bytes = std::uint64_t{64} << 20;
 };
