@@ -34,8 +34,9 @@ class FakeSimulation final : public Simulation {
   }
 
   Expected<std::unique_ptr<PreparedBridge>> prepare_bridge(const dds::Participant& participant,
-                                                           const std::string& hub_name) const override {
-    auto entities = sim::SimBridgeStage::open_entities(participant, hub_name);
+                                                           const std::string& hub_name,
+                                                           const std::string& ros_namespace) const override {
+    auto entities = sim::SimBridgeStage::open_entities(participant, hub_name, ros_namespace);
     if (!entities) return std::move(entities).error();
     return std::unique_ptr<PreparedBridge>(
         std::make_unique<FakePreparedBridge>(hub_name, std::move(*entities)));

@@ -159,7 +159,8 @@ Expected<std::unique_ptr<AssembledHub>> assemble_hub(const AssemblyRequest& requ
   }
   std::unique_ptr<Simulation::PreparedBridge> prepared_bridge;
   if (request.backend == BackendKind::kFake) {
-    auto prepared = request.simulation->prepare_bridge(*out->participant, out->config.name);
+    auto prepared =
+        request.simulation->prepare_bridge(*out->participant, out->config.name, out->config.ros_namespace);
     if (!prepared) return std::move(prepared).error();
     prepared_bridge = std::move(*prepared);
   }

@@ -17,6 +17,7 @@
 #include "hubrt/mcap/summary.h"
 
 #include "commands.h"
+#include "plant_tap.h"
 #include "recorder.h"
 #include "session.h"
 #include "station_tap.h"
@@ -25,7 +26,7 @@ namespace hubrt::hubctl {
 namespace {
 
 struct RecordOptions {
-  DomainOptions domain;
+  PlantOptions plant;
   std::string output;
   TapChoice choice;
   std::uint64_t max_size = 0;
@@ -113,9 +114,10 @@ int run_record(const RecordOptions& options) {
   recorder_options.split.max_bytes = options.max_size;
   recorder_options.split.max_duration = seconds(options.max_duration_s);
   recorder_options.chunk_period = seconds(options.chunk_s);
-  auto participant = join_domain(options.domain, "hubctl-record");
-  if (!participant) {
-    fmt::print(stderr, "hubctl record: {}\n", participant.error().message);
+  // One participant per station's domain (plant_session.h): a plant's stations in one file.
+  auto members = join_plant(options.plant, "hubctl-record");
+  if (!members) {
+    fmt::print(stderr, "hubctl record: {}\n", members.error().message);
     return kExitUsage;
   }
   auto recorder = Recorder::create(recorder_options);
@@ -125,7 +127,7 @@ int run_record(const RecordOptions& options) {
   }
   TapOptions tap_options;
   tap_options.filter = *filter;
-  auto tap = StationTap::start(*participant, std::move(tap_options));
+  auto tap = PlantTap::start(*members, tap_options);
   if (!tap) {
     fmt::print(stderr, "hubctl record: {}\n", tap.error().message);
     return kExitFailed;
@@ -203,7 +205,7 @@ void add_record_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet,-q", options->quiet, "No progress line (the file's name and the summary stay)");
   cmd->add_option("--recover", options->recover,
                   "Make a cut-off recording whole again (its whole chunks, a new summary) and exit");
-  add_domain_options(*cmd, options->domain);
+  add_plant_options(*cmd, options->plant);
   cmd->callback([options, &exit_code] {
     exit_code = options->recover.empty() ? run_record(*options) : run_recover(*options);
   });

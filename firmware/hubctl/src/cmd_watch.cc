@@ -11,6 +11,7 @@
 #include "hubrt/msgs/json.h"
 
 #include "commands.h"
+#include "plant_tap.h"
 #include "recording_source.h"
 #include "render.h"
 #include "sample_decoder.h"
@@ -22,7 +23,7 @@ namespace hubrt::hubctl {
 namespace {
 
 struct WatchOptions {
-  DomainOptions domain;
+  PlantOptions plant;
   double refresh_hz = 4.0;
   double duration_s = 0;          // 0 = until stopped
   bool plain = false;             // no screen redraw (logs, pipes)
@@ -93,22 +94,23 @@ void draw(const std::map<std::string, WatchedState>& watched, bool plain,
 int run_watch(const WatchOptions& options) {
   install_stop_handler();
   const bool live = options.from.empty();
-  std::optional<dds::Participant> participant;
+  // Live: one participant per station's domain (plant_session.h); a recording needs none.
+  std::vector<PlantMember> members;
   if (live) {
-    auto joined = join_domain(options.domain, "hubctl");
+    auto joined = join_plant(options.plant, "hubctl");
     if (!joined) {
       fmt::print(stderr, "hubctl watch: {}\n", joined.error().message);
       return kExitUsage;
     }
-    participant.emplace(std::move(*joined));
+    members = std::move(*joined);
   }
-  // The source of States: the tap on the domain, or the recording.
-  std::unique_ptr<StationTap> tap;
+  // The source of States: the tap on the domains, or the recording.
+  std::unique_ptr<PlantTap> tap;
   std::unique_ptr<TapSource> source;
   if (live) {
     TapOptions tap_options;
     tap_options.filter = &is_state_topic;
-    auto started = StationTap::start(*participant, std::move(tap_options));
+    auto started = PlantTap::start(members, tap_options);
     if (!started) {
       fmt::print(stderr, "hubctl watch: {}\n", started.error().message);
       return kExitFailed;
@@ -148,7 +150,8 @@ int run_watch(const WatchOptions& options) {
 
 void add_watch_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<WatchOptions>();
-  CLI::App* cmd = app.add_subcommand("watch", "Show every hub State on the domain in one live table");
+  CLI::App* cmd = app.add_subcommand(
+      "watch", "Show every hub State on the domain (or on a plant's stations' domains) in one live table");
   cmd->add_option("--refresh", options->refresh_hz, "Screen refreshes per second")
       ->check(CLI::Range(0.1, 50.0));
   cmd->add_option("--duration", options->duration_s, "Stop after this many seconds (default: until Ctrl-C)");
@@ -160,7 +163,7 @@ void add_watch_command(CLI::App& app, int& exit_code) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--rate", options->rate, "With --from: the pace, as a factor of the recorded one")
       ->check(CLI::Range(0.01, 1000.0));
-  add_domain_options(*cmd, options->domain);
+  add_plant_options(*cmd, options->plant);
   cmd->callback([options, &exit_code] {
     WatchOptions effective = *options;
     if (isatty(STDOUT_FILENO) == 0) effective.plain = true;

@@ -42,6 +42,13 @@ Expected<std::uint16_t> Recorder::channel_of(const TapTopic& topic) {
                         topic.ros_name,
                         "cdr",
                         {{"offered_qos_profiles", mcap::offered_qos_yaml(topic.offered)}}};
+  if (!topic.station.empty()) {
+    // A plant's station (plant_tap.h): the topic's name carries the station's in front; its DDS
+    // domain and its name on the wire stay in the channel's metadata.
+    channel.metadata.emplace("hubrt.station", topic.station);
+    channel.metadata.emplace("hubrt.dds_domain_id", std::to_string(topic.domain_id));
+    channel.metadata.emplace("hubrt.wire_topic", topic.ros_name.substr(topic.station.size() + 1));
+  }
   auto id = writer_.add_channel(channel);
   if (!id) return std::move(id).error();
   channels_.emplace(topic.ros_name, *id);

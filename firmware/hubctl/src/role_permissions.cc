@@ -47,12 +47,13 @@ Expected<void> add_hub(TopicPermissions& out, const std::string& hub, bool simul
     add_unique(out.publish, fmt::format("rt{}/{}/blackbox/written", ns, config->name));
   }
   if (simulation) {
-    add_unique(out.publish, fmt::format("rt/sim/{}/signals", config->name));
+    // Under the hub's namespace, as its sim bridge names them (sim_bridge_stage.h, sim_topic).
+    add_unique(out.publish, fmt::format("rt{}/sim/{}/signals", ns, config->name));
     // Every topic a hub's sim bridge reads (firmware/sim: sim_bridge_stage.h, kSim*Topic): a
     // simulated hub that may not read one of them does not start.
-    add_unique(out.subscribe, "rt/sim/input");
-    add_unique(out.subscribe, "rt/sim/badge");
-    add_unique(out.subscribe, "rt/sim/fault");
+    add_unique(out.subscribe, fmt::format("rt{}/sim/input", ns));
+    add_unique(out.subscribe, fmt::format("rt{}/sim/badge", ns));
+    add_unique(out.subscribe, fmt::format("rt{}/sim/fault", ns));
   }
   return {};
 }

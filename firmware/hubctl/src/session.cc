@@ -31,6 +31,10 @@ extern "C" void on_stop_signal(int signal) {
 void add_domain_options(CLI::App& app, DomainOptions& options) {
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
+  add_connection_options(app, options);
+}
+
+void add_connection_options(CLI::App& app, DomainOptions& options) {
   app.add_option("--dds-config", options.dds_config,
                  "Cyclone DDS XML configuration (default: $CYCLONEDDS_URI)");
   app.add_flag("--loopback", options.loopback, "Keep DDS on the loopback interface");

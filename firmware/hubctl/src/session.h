@@ -24,7 +24,11 @@ struct DomainOptions {
   std::string security_dir;  // DDS Security: station folder (hubctl security init) ...
   std::string identity;      // ... and the identity to join as; both or neither
 };
+// --domain (one id) and add_connection_options().
 void add_domain_options(CLI::App& app, DomainOptions& options);
+// Everything of add_domain_options but --domain: --dds-config, --loopback, --security,
+// --identity, --timeout (the plant-wide tools take --domain as a set: plant_session.h).
+void add_connection_options(CLI::App& app, DomainOptions& options);
 
 // Exit codes shared by all commands: the table of hubrt/base/exit_codes.h, shared with hubd.
 inline constexpr int kExitOk = exit_codes::kOk;

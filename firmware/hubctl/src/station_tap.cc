@@ -51,6 +51,7 @@ ReaderChoice choose_reader(const std::vector<dds::OfferedQos>& offered) {
 }  // namespace
 
 struct StationTap::Reading {
+  std::string wire_name;  // the ROS name on the wire (topic->ros_name may carry the station's)
   std::shared_ptr<const TapTopic> topic;
   std::optional<dds::UntypedTopic> dds_topic;
   std::optional<dds::UntypedReader> reader;
@@ -97,16 +98,30 @@ StationTap::~StationTap() {
   if (state_->waitset) (void)state_->waitset->wake();
   if (thread_.joinable()) thread_.join();
   watch_.reset();  // no callback after this (WriterWatch's destructor waits for them)
+  close_queues();
+}
+
+void StationTap::close_queues() {
   const std::lock_guard lock(mutex_);
+  if (queues_closed_) return;  // once: a queue fed by several taps counts each one's close
+  queues_closed_ = true;
   for (const auto& queue : queues_) queue->close();
 }
 
 std::unique_ptr<TapSubscription> StationTap::subscribe(std::size_t sample_capacity) {
   auto queue = std::make_shared<TapQueue>(sample_capacity);
+  feed(queue);
+  return std::make_unique<TapSubscription>(std::move(queue));
+}
+
+void StationTap::feed(std::shared_ptr<TapQueue> queue) {
   const std::lock_guard lock(mutex_);
   for (const auto& [name, topic] : topics_) queue->push({TapEvent::Kind::kTopic, topic, nullptr});
-  queues_.push_back(queue);
-  return std::make_unique<TapSubscription>(std::move(queue));
+  if (queues_closed_) {
+    queue->close();  // the tap has ended: nothing more will come from it
+    return;
+  }
+  queues_.push_back(std::move(queue));
 }
 
 std::vector<std::shared_ptr<const TapTopic>> StationTap::topics() const {
@@ -140,10 +155,10 @@ void StationTap::publish(const std::shared_ptr<const TapTopic>& topic, TapEvent:
   for (const auto& queue : queues_) queue->push({kind, topic, nullptr});
 }
 
-void StationTap::add_topic(const std::string& ros_name, const msgs::TypeInfo& type,
+void StationTap::add_topic(const std::string& wire_name, const msgs::TypeInfo& type,
                            std::vector<dds::OfferedQos> offered) {
   ThreadState& s = *state_;
-  if (s.by_name.count(ros_name) != 0 || type.descriptor == nullptr) return;
+  if (s.by_name.count(wire_name) != 0 || type.descriptor == nullptr) return;
   auto schema = s.schemas.find(&type);
   if (schema == s.schemas.end()) {
     // A type without a .msg definition still gets taken (echo, watch); a recorder says it cannot
@@ -152,16 +167,19 @@ void StationTap::add_topic(const std::string& ros_name, const msgs::TypeInfo& ty
     schema = s.schemas.emplace(&type, text ? std::move(*text) : std::string()).first;
   }
   auto reading = std::make_unique<Reading>();
+  reading->wire_name = wire_name;
   auto topic = std::make_shared<TapTopic>();
-  topic->id = static_cast<std::uint32_t>(s.readings.size());
-  topic->ros_name = ros_name;
+  topic->id = options_.first_topic_id + static_cast<std::uint32_t>(s.readings.size());
+  topic->ros_name = options_.station.empty() ? wire_name : "/" + options_.station + wire_name;
+  topic->station = options_.station;
+  topic->domain_id = participant_->domain_id();
   topic->type = &type;
   topic->type_name = std::string(type.ros_name);
   topic->schema = schema->second;
   topic->offered = std::move(offered);
   reading->topic = topic;
   reading->has_writers = !topic->offered.empty();
-  s.by_name.emplace(ros_name, s.readings.size());
+  s.by_name.emplace(wire_name, s.readings.size());
   s.readings.push_back(std::move(reading));
   update_topic(*s.readings.back(), topic->offered);
   publish(s.readings.back()->topic, TapEvent::Kind::kTopic);
@@ -182,7 +200,7 @@ void StationTap::update_topic(Reading& reading, std::vector<dds::OfferedQos> off
   reading.condition.reset();
   reading.reader.reset();
   if (!reading.dds_topic) {
-    auto created = dds::UntypedTopic::create(*participant_, *topic.type->descriptor, topic.ros_name);
+    auto created = dds::UntypedTopic::create(*participant_, *topic.type->descriptor, reading.wire_name);
     if (!created) return;  // a name Cyclone refuses: nothing to take
     reading.dds_topic.emplace(std::move(*created));
   }
@@ -202,7 +220,7 @@ void StationTap::update_topic(Reading& reading, std::vector<dds::OfferedQos> off
   if (!reader) return;
   reading.reader.emplace(std::move(*reader));
   auto condition = dds::ReadCondition::create(*reading.reader);
-  if (condition && state_->waitset->attach(*condition, reading.topic->id))
+  if (condition && state_->waitset->attach(*condition, reading.topic->id - options_.first_topic_id))
     reading.condition.emplace(std::move(*condition));
   reading.choice = choice;
 }
@@ -240,7 +258,7 @@ void StationTap::follow_writers(const std::vector<dds::WatchedWriter>& writers) 
     reading.has_writers = true;
   }
   for (const auto& reading : s.readings) {
-    if (reading->has_writers && by_topic.count(reading->topic->ros_name) == 0) {
+    if (reading->has_writers && by_topic.count(reading->wire_name) == 0) {
       reading->has_writers = false;
       publish(reading->topic, TapEvent::Kind::kTopicGone);
     }
@@ -281,8 +299,7 @@ void StationTap::run() noexcept {
   } catch (const std::exception&) {
     // Out of memory: the tap ends; its consumers see their queue close.
   }
-  const std::lock_guard lock(mutex_);
-  for (const auto& queue : queues_) queue->close();
+  close_queues();
 }
 
 }  // namespace hubrt::hubctl

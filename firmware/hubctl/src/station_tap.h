@@ -34,6 +34,12 @@ struct TapOptions {
   // only absorbs a burst while its thread is descheduled. Never applies back-pressure to a writer
   // (keep-last).
   std::int32_t reader_depth = 1000;
+  // A plant-wide tap (plant_tap.h) runs one tap per station's domain: each names its topics
+  // "/<station>" + their ROS name ("/cell_a/dock/command"; empty: the ROS name alone) and numbers
+  // them from `first_topic_id`, so that the stations' topics never share a name or an id. `fixed`
+  // topics and the filter see the ROS name as on the wire.
+  std::string station;
+  std::uint32_t first_topic_id = 0;
 };
 
 // Counters of what the tap took, for progress lines. Thread-safe to read.
@@ -69,6 +75,9 @@ class StationTap {
   // A new consumer whose queue holds at most `sample_capacity` samples; it first gets a kTopic
   // event for every topic the tap has now. Thread-safe.
   std::unique_ptr<TapSubscription> subscribe(std::size_t sample_capacity);
+  // The same into a queue other taps feed too (a plant-wide tap): the caller has counted this tap
+  // among its producers (TapQueue::add_producer); the tap closes it once when it ends. Thread-safe.
+  void feed(std::shared_ptr<TapQueue> queue);
 
   // Every topic the tap reads now. Thread-safe.
   [[nodiscard]] std::vector<std::shared_ptr<const TapTopic>> topics() const;
@@ -84,11 +93,14 @@ class StationTap {
   StationTap(const dds::Participant& participant, TapOptions options);
   void run() noexcept;
   void follow_writers(const std::vector<dds::WatchedWriter>& writers);
-  void add_topic(const std::string& ros_name, const msgs::TypeInfo& type,
+  // `wire_name`: the ROS name as on the wire (without the station's name).
+  void add_topic(const std::string& wire_name, const msgs::TypeInfo& type,
                  std::vector<dds::OfferedQos> offered);
   void update_topic(Reading& reading, std::vector<dds::OfferedQos> offered);
   void publish(const std::shared_ptr<const TapTopic>& topic, TapEvent::Kind kind);
   void take_all();
+  // Closes every consumer's queue, once (the thread's end and the destructor both call it).
+  void close_queues();
 
   const dds::Participant* participant_;
   TapOptions options_;
@@ -103,6 +115,7 @@ class StationTap {
   std::set<std::string> written_;
   std::set<std::string> unknown_;
   TapCounters counters_;
+  bool queues_closed_ = false;
 
   std::thread thread_;  // last: started when everything else is in place, joined first
 };

@@ -37,7 +37,11 @@ namespace hubrt::hubctl {
 struct TapTopic {
   std::uint32_t id = 0;        // the source's number for it: stable while the source lives
   std::uint32_t revision = 0;  // grows with each change of `offered`
-  std::string ros_name;        // "/dock_ecu/dock/state"
+  // "/dock_ecu/dock/state"; a plant-wide tap (plant_tap.h) puts the station's name in front,
+  // "/cell_a/dock_ecu/dock/state", so that every station's topics stay apart in every view.
+  std::string ros_name;
+  std::string station;          // that station's name ("" for a tap of one domain)
+  std::uint32_t domain_id = 0;  // the DDS domain the topic is on (a recording's: 0)
   // The registered type; nullptr only for a recording's channel of a type this hubctl does not
   // know (its samples can be counted and replayed, not decoded).
   const msgs::TypeInfo* type = nullptr;
@@ -74,7 +78,11 @@ class TapQueue {
   // Producer side. A sample beyond the capacity is dropped and counted; a topic event always goes
   // in. Nothing is pushed after close().
   void push(TapEvent event);
-  // No more events will come; pop() returns what is left, then nullopt without waiting.
+  // One more producer (a plant-wide tap's station taps share one queue): close() then closes the
+  // queue only when every producer has called it. A queue starts with one producer.
+  void add_producer();
+  // This producer is done; once every producer is, no more events will come and pop() returns
+  // what is left, then nullopt without waiting.
   void close();
 
   // Consumer side: the next event, waiting up to `timeout` for one; nullopt when none came (or the
@@ -91,6 +99,7 @@ class TapQueue {
   std::size_t samples_ = 0;      // samples in events_; guarded
   std::uint64_t dropped_ = 0;    // guarded
   bool closed_ = false;          // guarded
+  std::size_t producers_ = 1;    // guarded: producers that have not closed yet
 };
 
 // What a view reads: the live tap or a recording. Not thread-safe: one consumer thread.

@@ -18,9 +18,16 @@ void TapQueue::push(TapEvent event) {
   ready_.notify_one();
 }
 
+void TapQueue::add_producer() {
+  const std::lock_guard lock(mutex_);
+  ++producers_;
+}
+
 void TapQueue::close() {
   {
     const std::lock_guard lock(mutex_);
+    if (producers_ > 0) --producers_;
+    if (producers_ > 0) return;
     closed_ = true;
   }
   ready_.notify_all();

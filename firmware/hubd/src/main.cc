@@ -56,6 +56,7 @@ struct Options {
   int realtime_priority = kDefaultRealtimePriority;
   std::string security_dir;  // DDS Security, overriding the hub file's security: section
   std::string identity;
+  std::string trace_stages;  // hubd --trace-stages FILE: the command steps' stage stamps, at exit
   std::uint32_t twin_check_ms = static_cast<std::uint32_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(assembly::kDefaultTwinCheckWindow).count());
 };
@@ -66,6 +67,8 @@ constexpr int kExitConfig = exit_codes::kUsage;
 // How long systemd waits for the first cycle (SystemdNotifier::allow_startup): the unit's
 // WatchdogSec= (2 s) is for a running cycle, not for loading files, opening devices and joining DDS.
 constexpr Duration kStartupWatchdog = std::chrono::seconds(30);
+// --trace-stages: command steps kept (32 B each, 512 KiB): a benchmark's whole run of commands.
+constexpr std::size_t kStageTraceCapacity = 16384;
 
 std::string signal_name(int signal) {
   const char* abbreviation = sigabbrev_np(signal);  // glibc >= 2.32
@@ -225,6 +228,13 @@ int run(const Options& options) {
   // Before any thread exists: blocks the stop signals for every thread DDS will start.
   auto runner = runtime::CycleRunner::create();
   if (!runner) return fail(runner.error().message, kExitRuntime);
+  // Only when asked for (the benchmarks): the ring is allocated here, before the first cycle.
+  SystemClock trace_clock;
+  std::optional<runtime::StageTrace> trace;
+  if (!options.trace_stages.empty()) {
+    trace.emplace(kStageTraceCapacity, trace_clock);
+    runner->trace_stages(&*trace);
+  }
   request.waker = runner->waker();
   // After --check returned: a check joins no network, so it has no twin to collide with.
   request.twin_check = std::chrono::milliseconds(options.twin_check_ms);
@@ -287,6 +297,10 @@ int run(const Options& options) {
   systemd.stopping();
   hub.enter_safe_state();
   hub.report_safe_state(clock.now());
+  if (trace) {
+    if (auto written = trace->write_csv(options.trace_stages); !written)
+      spdlog::warn("{}", written.error().message);
+  }
   if (!stopped) {
     spdlog::error("cycle failed: {}; outputs driven to their safe state", stopped.error().message);
     write_black_box(**assembled, "exit-error");
@@ -363,6 +377,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-black-box", options.no_black_box,
                "Run without the black box, whatever the hub file's blackbox: section says (what the "
                "benchmark compares the black box's cost with)");
+  app.add_option("--trace-stages", options.trace_stages,
+                 "Stamp every command step's stages (listener, wake, step, write) into a ring of the last "
+                 "16384 and write it to this CSV file at exit (for the benchmarks; off by default)");
   app.add_flag("--realtime", options.realtime,
                "Run the cycle (and every thread of hubd) under SCHED_FIFO and lock its memory "
                "(mlockall); refused with exit status 2 where not permitted (needs CAP_SYS_NICE or "

@@ -19,6 +19,7 @@ Expected<StopReason> CycleRunner::run(Hub& hub, const Clock& clock, const RunHoo
   // Absolute periodic schedule: the next deadline only ever moves by whole periods from the start,
   // independent of when we wake.
   Time next = clock.now().mono;
+  hub.trace_stages(trace_);
   for (;;) {
     auto events = timer_->wait_until(next);
     if (!events) return events.error();
@@ -31,7 +32,11 @@ Expected<StopReason> CycleRunner::run(Hub& hub, const Clock& clock, const RunHoo
     // blocked. The nodes drop what queued meanwhile before any step can take it.
     const Instant woke = clock.now();
     if (woke.mono - next > period) hub.note_late(woke, woke.mono - next);
-    if (events->woken) hub.command_step(woke);
+    if (events->woken) {
+      if (trace_ != nullptr) trace_->begin_step(woke.mono);
+      hub.command_step(woke);
+      if (trace_ != nullptr) trace_->end_step();
+    }
     if (!events->deadline_reached) continue;
     // One reading of the clock per step, as before the stall check: a fresh one after a command step.
     const Instant now = events->woken ? clock.now() : woke;

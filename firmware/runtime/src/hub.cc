@@ -84,7 +84,10 @@ void Hub::step(const Instant& now, bool publish_all) noexcept {
 bool Hub::step_node(std::size_t index, const Instant& now, bool publish_all) noexcept {
   NodeBase& node = *nodes_[index];
   const bool took_effect = node.step(now);
+  const bool traced = trace_ != nullptr && !publish_all && took_effect;
+  if (traced) trace_->node_stepped();
   const Status published = publish_all ? node.publish(now) : node.publish_if_due(now, took_effect);
+  if (traced) trace_->state_written();
   if (!published.is_ok()) ++stats_.publish_errors;
   return took_effect;
 }

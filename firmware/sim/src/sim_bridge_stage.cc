@@ -24,6 +24,10 @@ std::string sim_signals_topic(std::string_view hub) {
   return fmt::format("/sim/{}/signals", hub);
 }
 
+std::string sim_topic(std::string_view ros_namespace, std::string_view topic) {
+  return fmt::format("{}{}", ros_namespace, topic);
+}
+
 Expected<std::unique_ptr<SimBridgeStage>> SimBridgeStage::create(const dds::Participant& participant,
                                                                  std::string hub_name,
                                                                  const hal::BoardConfig& board,
@@ -43,29 +47,33 @@ std::unique_ptr<SimBridgeStage> SimBridgeStage::create(Entities entities, std::s
 }
 
 Expected<SimBridgeStage::Entities> SimBridgeStage::open_entities(const dds::Participant& participant,
-                                                                 const std::string& hub_name) {
+                                                                 const std::string& hub_name,
+                                                                 std::string_view ros_namespace) {
   // Set by Cyclone's data-available listener of the three readers (no blocking: an atomic store),
   // so that a cycle with nothing received takes nothing: three empty dds_take calls per cycle were
   // most of what the bridge cost once the signals were written only on change.
   auto pending = std::make_shared<std::atomic<bool>>(true);
   const auto note = [pending] { pending->store(true); };
-  auto input_topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, kSimInputTopic);
+  auto input_topic =
+      dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, sim_topic(ros_namespace, kSimInputTopic));
   if (!input_topic) return std::move(input_topic).error();
   auto input_reader = dds::Reader<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic,
                                                                        dds::Qos::ros2_default(), note);
   if (!input_reader) return std::move(input_reader).error();
-  auto fault_topic = dds::Topic<hub_msgs_msg_dds__SimFault_>::create(participant, kSimFaultTopic);
+  auto fault_topic =
+      dds::Topic<hub_msgs_msg_dds__SimFault_>::create(participant, sim_topic(ros_namespace, kSimFaultTopic));
   if (!fault_topic) return std::move(fault_topic).error();
   auto fault_reader = dds::Reader<hub_msgs_msg_dds__SimFault_>::create(participant, *fault_topic,
                                                                        dds::Qos::ros2_default(), note);
   if (!fault_reader) return std::move(fault_reader).error();
-  auto badge_topic = dds::Topic<hub_msgs_msg_dds__SimBadge_>::create(participant, kSimBadgeTopic);
+  auto badge_topic =
+      dds::Topic<hub_msgs_msg_dds__SimBadge_>::create(participant, sim_topic(ros_namespace, kSimBadgeTopic));
   if (!badge_topic) return std::move(badge_topic).error();
   auto badge_reader = dds::Reader<hub_msgs_msg_dds__SimBadge_>::create(participant, *badge_topic,
                                                                        dds::Qos::ros2_default(), note);
   if (!badge_reader) return std::move(badge_reader).error();
-  auto signals_topic =
-      dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(hub_name));
+  auto signals_topic = dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(
+      participant, sim_topic(ros_namespace, sim_signals_topic(hub_name)));
   if (!signals_topic) return std::move(signals_topic).error();
   auto writer = dds::Writer<hub_msgs_msg_dds__SimSignals_>::create(participant, *signals_topic);
   if (!writer) return std::move(writer).error();

@@ -19,23 +19,27 @@ std::string TestDomain::lock_path_for(std::uint32_t domain_id) {
   return (dir / ("hubrt-test-domain-" + std::to_string(domain_id) + ".lock")).string();
 }
 
+Expected<TestDomain> TestDomain::try_lock(std::uint32_t domain_id) {
+  std::string path = lock_path_for(domain_id);
+  // Read-only is enough for flock and works on a lock file another user created. CLOEXEC keeps
+  // child processes from holding the lock after we are gone.
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-vararg): open(2) is variadic.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0)
+    return make_error(ErrorCode::kIo, "open " + path + ": " + std::system_category().message(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return TestDomain(fd, domain_id, std::move(path));
+  ::close(fd);
+  return make_error(ErrorCode::kBusy, path + " is locked by another process");
+}
+
 Expected<TestDomain> TestDomain::acquire() {
   constexpr std::uint32_t kCount = kLastDomainId - kFirstDomainId + 1;
   const auto start = static_cast<std::uint32_t>(getpid()) % kCount;
   std::string last_open_error;
   for (std::uint32_t i = 0; i < kCount; ++i) {
-    const std::uint32_t id = kFirstDomainId + (start + i) % kCount;
-    std::string path = lock_path_for(id);
-    // Read-only is enough for flock and works on a lock file another user created. CLOEXEC keeps
-    // child processes from holding the lock after we are gone.
-    // NOLINTNEXTLINE(cppcoreguidelines-pro-type-vararg): open(2) is variadic.
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) {
-      last_open_error = "open " + path + ": " + std::system_category().message(errno);
-      continue;
-    }
-    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return TestDomain(fd, id, std::move(path));
-    ::close(fd);
+    auto domain = try_lock(kFirstDomainId + (start + i) % kCount);
+    if (domain) return domain;
+    if (domain.error().code == ErrorCode::kIo) last_open_error = domain.error().message;
   }
   if (!last_open_error.empty()) {
     return make_error(ErrorCode::kIo, "no free test DDS domain id; last failure: " + last_open_error);
@@ -44,6 +48,42 @@ Expected<TestDomain> TestDomain::acquire() {
                                           " to " + std::to_string(kLastDomainId) +
                                           " is locked by another process (" + lock_path_for(kFirstDomainId) +
                                           " ...)");
+}
+
+Expected<TestDomainRange> TestDomainRange::acquire(std::uint32_t count) {
+  if (count == 0 || count > kMaxCount) {
+    return make_error(
+        ErrorCode::kInvalidArgument,
+        "a test domain range holds 1 to " + std::to_string(kMaxCount) + " ids, not " + std::to_string(count));
+  }
+  constexpr std::uint32_t kStarts = TestDomain::kLastDomainId - TestDomain::kFirstDomainId + 1;
+  const auto offset = static_cast<std::uint32_t>(getpid()) % kStarts;
+  std::string last_open_error;
+  for (std::uint32_t i = 0; i < kStarts; ++i) {
+    const std::uint32_t first = TestDomain::kFirstDomainId + (offset + i) % kStarts;
+    if (first + count - 1 > TestDomain::kLastDomainId) continue;  // a run does not wrap around
+    std::vector<TestDomain> run;
+    for (std::uint32_t id = first; id < first + count; ++id) {
+      auto domain = TestDomain::try_lock(id);
+      if (!domain) {
+        if (domain.error().code == ErrorCode::kIo) last_open_error = domain.error().message;
+        break;  // `run` goes out of scope: its locks are released
+      }
+      run.push_back(std::move(*domain));
+    }
+    if (run.size() == count) return TestDomainRange(std::move(run));
+  }
+  if (!last_open_error.empty()) {
+    return make_error(ErrorCode::kIo, "no free run of test DDS domain ids; last failure: " + last_open_error);
+  }
+  return make_error(ErrorCode::kBusy, "no " + std::to_string(count) +
+                                          " consecutive test DDS domain ids from " +
+                                          std::to_string(TestDomain::kFirstDomainId) + " to " +
+                                          std::to_string(TestDomain::kLastDomainId) + " are free");
+}
+
+std::string TestDomainRange::text() const {
+  return std::to_string(first_id()) + "-" + std::to_string(last_id());
 }
 
 TestDomain::~TestDomain() {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -73,6 +74,59 @@ TEST(TestDomain, ConfigAndEnvCarryTheIdAndTheLoopbackConfiguration) {
   const Environment env = domain->env();
   EXPECT_EQ(value_of(env, "ROS_DOMAIN_ID"), std::to_string(domain->domain_id()));
   EXPECT_EQ(value_of(env, "CYCLONEDDS_URI"), dds::loopback_config_xml());
+}
+
+// flock(1) -n on `path`: exit status 1 when another process holds the lock, 0 when it is free.
+int probe_lock(const std::string& path) {
+  auto probe = ChildProcess::start("flock", {"-n", path, "true"});
+  EXPECT_TRUE(probe) << probe.error().message;
+  if (!probe) return -1;
+  auto status = probe->wait(seconds(10));  // generous: only process start-up on a busy machine
+  EXPECT_TRUE(status) << status.error().message;
+  if (!status) return -1;
+  return status->exited_with(0) ? 0 : (status->exited_with(1) ? 1 : -1);
+}
+
+TEST(TestDomainRange, HoldsConsecutiveIdsEachLockedUntilItGoes) {
+  std::vector<std::string> paths;
+  {
+    auto range = TestDomainRange::acquire(3);
+    ASSERT_TRUE(range) << range.error().message;
+    ASSERT_EQ(range->size(), 3U);
+    EXPECT_EQ(range->last_id(), range->first_id() + 2);
+    EXPECT_EQ(range->text(), std::to_string(range->first_id()) + "-" + std::to_string(range->first_id() + 2));
+    EXPECT_GE(range->first_id(), TestDomain::kFirstDomainId);
+    EXPECT_LE(range->last_id(), TestDomain::kLastDomainId);
+    for (std::size_t i = 0; i < range->size(); ++i) {
+      EXPECT_EQ(range->at(i).domain_id(), range->first_id() + i);
+      paths.push_back(range->at(i).lock_path());
+      EXPECT_EQ(probe_lock(paths.back()), 1) << paths.back() << " is not held";
+    }
+  }
+  for (const auto& path : paths) EXPECT_EQ(probe_lock(path), 0) << path << " still held";
+}
+
+TEST(TestDomainRange, NeverOverlapsAnIdHeldInThisProcessOrElsewhere) {
+  auto single = TestDomain::acquire();
+  ASSERT_TRUE(single) << single.error().message;
+  auto a = TestDomainRange::acquire(4);
+  ASSERT_TRUE(a) << a.error().message;
+  auto b = TestDomainRange::acquire(4);
+  ASSERT_TRUE(b) << b.error().message;
+  // flock is per open file description: a second lock on a held id fails in this process too.
+  const auto inside = [](const TestDomainRange& r, std::uint32_t id) {
+    return id >= r.first_id() && id <= r.last_id();
+  };
+  EXPECT_FALSE(inside(*a, single->domain_id()));
+  EXPECT_FALSE(inside(*b, single->domain_id()));
+  EXPECT_TRUE(b->last_id() < a->first_id() || b->first_id() > a->last_id())
+      << a->text() << " and " << b->text();
+}
+
+TEST(TestDomainRange, RefusesAnEmptyOrOversizedRun) {
+  EXPECT_EQ(TestDomainRange::acquire(0).error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(TestDomainRange::acquire(TestDomainRange::kMaxCount + 1).error().code,
+            ErrorCode::kInvalidArgument);
 }
 
 }  // namespace

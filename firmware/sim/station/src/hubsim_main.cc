@@ -41,7 +41,8 @@ struct Options {
   std::optional<double> rate_hz;
   std::optional<int> travel_ms;
   std::string log_level = "info";
-  std::string security_dir;  // DDS Security (role simulator): station folder and identity
+  std::string ros_namespace;  // --namespace: the station's, in front of every topic
+  std::string security_dir;   // DDS Security (role simulator): station folder and identity
   std::string identity;
 };
 
@@ -84,6 +85,9 @@ Expected<StationConfig> load(const Options& options) {
     if (*names[role]) config->hubs[role] = **names[role];
   }
   if (options.rate_hz) config->rate_hz = *options.rate_hz;
+  // The mobile platform's State is a hub's of the same station: under the same namespace.
+  if (config->mobile_platform && !options.ros_namespace.empty())
+    config->mobile_platform->state_topic = options.ros_namespace + config->mobile_platform->state_topic;
   if (options.travel_ms) config->robot_travel = std::chrono::milliseconds(*options.travel_ms);
   return config;
 }
@@ -120,7 +124,7 @@ int run(const Options& options) {
     return kExitRuntime;
   }
   StationModel model(*config);
-  auto bridge = StationBridge::create(*participant, model, spdlog::default_logger());
+  auto bridge = StationBridge::create(*participant, model, spdlog::default_logger(), options.ros_namespace);
   if (!bridge) {
     spdlog::error("{}", bridge.error().message);
     return kExitRuntime;

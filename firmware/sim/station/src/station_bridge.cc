@@ -26,26 +26,30 @@ char* wire(const std::string& s) {
 
 Expected<std::unique_ptr<StationBridge>> StationBridge::create(const dds::Participant& participant,
                                                                StationModel& model,
-                                                               std::shared_ptr<spdlog::logger> log) {
+                                                               std::shared_ptr<spdlog::logger> log,
+                                                               std::string_view ros_namespace) {
   std::array<std::unique_ptr<HubView>, kHubRoles> hubs;
   for (std::size_t role = 0; role < kHubRoles; ++role) {
     const std::string& name = model.config().hubs[role];
-    auto topic = dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(participant, sim_signals_topic(name));
+    auto topic = dds::Topic<hub_msgs_msg_dds__SimSignals_>::create(
+        participant, sim_topic(ros_namespace, sim_signals_topic(name)));
     if (!topic) return std::move(topic).error();
     auto reader = dds::Reader<hub_msgs_msg_dds__SimSignals_>::create(participant, *topic);
     if (!reader) return std::move(reader).error();
     hubs[role] = std::unique_ptr<HubView>(new HubView{name, std::move(*topic), std::move(*reader), {}, {}});
   }
-  auto command_topic =
-      dds::Topic<hub_msgs_msg_dds__StationCommand_>::create(participant, kStationCommandTopic);
+  auto command_topic = dds::Topic<hub_msgs_msg_dds__StationCommand_>::create(
+      participant, sim_topic(ros_namespace, kStationCommandTopic));
   if (!command_topic) return std::move(command_topic).error();
   auto command_reader = dds::Reader<hub_msgs_msg_dds__StationCommand_>::create(participant, *command_topic);
   if (!command_reader) return std::move(command_reader).error();
-  auto state_topic = dds::Topic<hub_msgs_msg_dds__StationState_>::create(participant, kStationStateTopic);
+  auto state_topic = dds::Topic<hub_msgs_msg_dds__StationState_>::create(
+      participant, sim_topic(ros_namespace, kStationStateTopic));
   if (!state_topic) return std::move(state_topic).error();
   auto state_writer = dds::Writer<hub_msgs_msg_dds__StationState_>::create(participant, *state_topic);
   if (!state_writer) return std::move(state_writer).error();
-  auto input_topic = dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, kSimInputTopic);
+  auto input_topic =
+      dds::Topic<hub_msgs_msg_dds__SimInput_>::create(participant, sim_topic(ros_namespace, kSimInputTopic));
   if (!input_topic) return std::move(input_topic).error();
   auto input_writer = dds::Writer<hub_msgs_msg_dds__SimInput_>::create(participant, *input_topic);
   if (!input_writer) return std::move(input_writer).error();

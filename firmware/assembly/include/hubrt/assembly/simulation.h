@@ -42,8 +42,10 @@ class Simulation {
    public:
     virtual ~PreparedBridge() = default;
   };
+  // `ros_namespace`: the hub's, in front of each of those topics (a station in a namespace).
   [[nodiscard]] virtual Expected<std::unique_ptr<PreparedBridge>> prepare_bridge(
-      const dds::Participant& participant, const std::string& hub_name) const = 0;
+      const dds::Participant& participant, const std::string& hub_name,
+      const std::string& ros_namespace) const = 0;
   // The sim bridge stage over `prepared` (from prepare_bridge) and `backend` (from open_backend,
   // outliving the stage). Never fails.
   [[nodiscard]] virtual std::unique_ptr<runtime::CycleStage> bridge(

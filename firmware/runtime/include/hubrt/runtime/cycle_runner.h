@@ -12,6 +12,7 @@
 #include "hubrt/base/time.h"
 #include "hubrt/runtime/cycle_timer.h"
 #include "hubrt/runtime/hub.h"
+#include "hubrt/runtime/stage_trace.h"
 #include "hubrt/runtime/system_cycle_timer.h"
 
 namespace hubrt::runtime {
@@ -21,13 +22,16 @@ namespace hubrt::runtime {
 class Waker {
  public:
   Waker() = default;
-  explicit Waker(const CycleTimer* timer) noexcept : timer_(timer) {}
+  explicit Waker(const CycleTimer* timer, StageTrace* trace = nullptr) noexcept
+      : timer_(timer), trace_(trace) {}
   void wake() const noexcept {
+    if (trace_ != nullptr) trace_->note_wake();
     if (timer_ != nullptr) timer_->wake();
   }
 
  private:
   const CycleTimer* timer_ = nullptr;
+  StageTrace* trace_ = nullptr;  // stamps the wake when the hub's stages are traced
 };
 
 struct RunHooks {
@@ -50,7 +54,11 @@ class CycleRunner {
   CycleRunner(const CycleRunner&) = delete;
   ~CycleRunner() = default;
 
-  [[nodiscard]] Waker waker() const noexcept { return Waker(timer_.get()); }
+  [[nodiscard]] Waker waker() const noexcept { return Waker(timer_.get(), trace_); }
+  // Stamps every command step's stages into `trace` (stage_trace.h; null: none, the default);
+  // call before waker() is handed out, so that its wakes are stamped too. `trace` must outlive
+  // the runner's runs; run() also hands it to the hub.
+  void trace_stages(StageTrace* trace) noexcept { trace_ = trace; }
   // Asks run() to return after the current step. Thread-safe.
   void request_stop() const noexcept { timer_->request_stop(); }
 
@@ -70,6 +78,7 @@ class CycleRunner {
 
  private:
   std::unique_ptr<CycleTimer> timer_;
+  StageTrace* trace_ = nullptr;
   int last_signal_ = 0;
 };
 

@@ -16,6 +16,7 @@
 #include "hubrt/runtime/hub_alerts.h"
 #include "hubrt/runtime/lifecycle.h"
 #include "hubrt/runtime/node.h"
+#include "hubrt/runtime/stage_trace.h"
 
 namespace hubrt::runtime {
 
@@ -75,6 +76,12 @@ class Hub {
   void add_first_stage(std::unique_ptr<CycleStage> stage);
   void keep_alive(std::shared_ptr<void> owned);
 
+  // Stamps, in command steps, when the first node whose command took effect stepped and when its
+  // State was written (stage_trace.h; null: none). The node's own State, as the node-type layout
+  // publishes it; in the hub layout the hub State goes out after every node stepped, later than
+  // the "written" stamp. CycleRunner::run() sets it.
+  void trace_stages(StageTrace* trace) noexcept { trace_ = trace; }
+
   // A periodic cycle at `now`; publishes every State.
   void cycle(const Instant& now) noexcept;
   // A step between cycles because commands arrived; publishes States whose command took effect.
@@ -125,6 +132,7 @@ class Hub {
   std::vector<std::uint8_t> stepped_;  // per node, within one command step (sized by add_node)
   std::vector<std::unique_ptr<CycleStage>> stages_;
   std::vector<std::shared_ptr<void>> owned_;
+  StageTrace* trace_ = nullptr;
   HubAlerts alerts_;
   CycleStats stats_;
   LifecycleState lifecycle_{Lifecycle::kConfiguring, "reading the hub and board files"};

@@ -31,6 +31,11 @@ inline constexpr std::string_view kSimInputTopic = "/sim/input";
 inline constexpr std::string_view kSimBadgeTopic = "/sim/badge";
 inline constexpr std::string_view kSimFaultTopic = "/sim/fault";
 std::string sim_signals_topic(std::string_view hub);
+// A simulation topic of a station under a ROS namespace ("/cell_a": "/cell_a/sim/input"; "": the
+// topic as it is). A plant whose stations share one DDS domain gives each station a namespace
+// (docs/plant.md): its hubs' (`namespace:` in the hub file), its hubsim's (`--namespace`) and its
+// planner's (`hubctl play --namespace`), so that no station's simulation reaches another's hubs.
+std::string sim_topic(std::string_view ros_namespace, std::string_view topic);
 // The signals are published after a periodic cycle when one changed, when a new reader matched,
 // and otherwise at least this often (the station model takes a hub silent for a second as gone:
 // station_bridge.h, kSilentAfter) — but only while a reader is matched: with nobody listening they
@@ -64,7 +69,9 @@ class SimBridgeStage final : public runtime::CycleStage {
     dds::Writer<hub_msgs_msg_dds__SimSignals_> signals_writer;
   };
   // Errors: the DDS entities.
-  static Expected<Entities> open_entities(const dds::Participant& participant, const std::string& hub_name);
+  // `ros_namespace`: the hub's (its hub file's `namespace:`), in front of every topic (sim_topic).
+  static Expected<Entities> open_entities(const dds::Participant& participant, const std::string& hub_name,
+                                          std::string_view ros_namespace = {});
   // As create() above, on entities opened before. Never fails.
   static std::unique_ptr<SimBridgeStage> create(Entities entities, std::string hub_name,
                                                 const hal::BoardConfig& board, hal::fake::FakeBackend& fake,

@@ -51,12 +51,45 @@ class TestDomain {
   static std::string lock_path_for(std::uint32_t domain_id);
 
  private:
+  friend class TestDomainRange;
+  // Locks `domain_id`'s file without waiting. Errors: kBusy when another process holds it; kIo
+  // when the file cannot be opened.
+  static Expected<TestDomain> try_lock(std::uint32_t domain_id);
   TestDomain(int fd, std::uint32_t domain_id, std::string lock_path) noexcept
       : fd_(fd), domain_id_(domain_id), lock_path_(std::move(lock_path)) {}
 
   int fd_ = -1;
   std::uint32_t domain_id_ = 0;
   std::string lock_path_;
+};
+
+// A run of consecutive DDS domain ids for one test process — a plant of stations, one domain each
+// (`hubctl watch --domain 10-12`) — taken with TestDomain's file locks, one lock per id, held for
+// as long as it lives. Move-only.
+// Thread-safety: acquire() is thread-safe; the accessors are const.
+class TestDomainRange {
+ public:
+  // At most this many ids at once: a range takes ids other tests could use.
+  static constexpr std::uint32_t kMaxCount = 8;
+
+  // `count` consecutive free ids in [TestDomain::kFirstDomainId, TestDomain::kLastDomainId],
+  // starting at a point derived from the process id; every id's lock is taken without waiting, and
+  // a start whose run holds an id locked elsewhere is given up (its locks released) for the next.
+  // Errors: kInvalidArgument for a count of 0 or above kMaxCount; kBusy if no run of `count` free
+  // ids exists; kIo if no lock file can be opened.
+  static Expected<TestDomainRange> acquire(std::uint32_t count);
+
+  [[nodiscard]] std::uint32_t first_id() const noexcept { return domains_.front().domain_id(); }
+  [[nodiscard]] std::uint32_t last_id() const noexcept { return domains_.back().domain_id(); }
+  [[nodiscard]] std::size_t size() const noexcept { return domains_.size(); }
+  // The i-th domain of the run (its id is first_id() + i). Precondition: i < size().
+  [[nodiscard]] const TestDomain& at(std::size_t i) const { return domains_.at(i); }
+  // "first-last", as `hubctl --domain` takes it.
+  [[nodiscard]] std::string text() const;
+
+ private:
+  explicit TestDomainRange(std::vector<TestDomain> domains) noexcept : domains_(std::move(domains)) {}
+  std::vector<TestDomain> domains_;  // consecutive ids, ascending; never empty
 };
 
 }  // namespace hubrt::test_support

@@ -43,10 +43,15 @@ inline constexpr Duration kCommandFreshFor = std::chrono::seconds(1);
 // Not thread-safe: step() from one thread.
 class StationBridge {
  public:
-  // `model` must outlive the bridge. Errors: the DDS entities (naming the topic).
+  // `model` must outlive the bridge. `ros_namespace` ("/cell_a", or "" for none) goes in front of
+  // the station's simulation topics (sim_topic: the commands and State above, /sim/input and each
+  // hub's signals), for a station that shares its DDS domain with others (docs/plant.md); the
+  // mobile platform's State topic is the model's, as configured. Errors: the DDS entities (naming
+  // the topic).
   static Expected<std::unique_ptr<StationBridge>> create(const dds::Participant& participant,
                                                          StationModel& model,
-                                                         std::shared_ptr<spdlog::logger> log);
+                                                         std::shared_ptr<spdlog::logger> log,
+                                                         std::string_view ros_namespace = {});
 
   ~StationBridge();
   StationBridge(const StationBridge&) = delete;
