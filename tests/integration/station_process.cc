@@ -71,6 +71,12 @@ Expected<std::string> write_hub_file(const StationHub& hub, const StationOptions
         subscription["field"] = target->second;
       }
     }
+    if (!options.ros_namespace.empty()) {
+      root["namespace"] = options.ros_namespace;
+      for (auto entry : root["subscriptions"]) {
+        entry.second["topic"] = options.ros_namespace + entry.second["topic"].as<std::string>();
+      }
+    }
     for (auto node : root["nodes"]) {
       if (options.lift_speed_mm_s > 0 && node.second["type"].as<std::string>() == "lift")
         node.second["speed_mm_s"] = options.lift_speed_mm_s;
@@ -115,7 +121,7 @@ Expected<StationProcesses> StationProcesses::start(const test_support::TestDomai
   std::string dir = (fs::temp_directory_path() / "hubrt-station-XXXXXX").string();
   if (::mkdtemp(dir.data()) == nullptr)
     return make_error(ErrorCode::kIo, fmt::format("mkdtemp {} failed", dir));
-  StationProcesses station(domain, dir, options.security_dir);
+  StationProcesses station(domain, dir, options.security_dir, options.ros_namespace);
   const auto secured = [&options](std::vector<std::string> args, const std::string& identity) {
     if (!options.security_dir.empty())
       args.insert(args.end(), {"--security", options.security_dir, "--identity", identity});
@@ -129,6 +135,8 @@ Expected<StationProcesses> StationProcesses::start(const test_support::TestDomai
     files.emplace_back(&hub, *file);
   }
   std::vector<std::string> hubsim_args = options.hubsim_args;
+  if (!options.ros_namespace.empty())
+    hubsim_args.insert(hubsim_args.end(), {"--namespace", options.ros_namespace});
   if (options.full) {
     auto world = write_world_file(options, dir);
     if (!world) return std::move(world).error();
@@ -177,6 +185,7 @@ Expected<Finished> StationProcesses::play(const std::string& scenario, Duration 
   // --timeout: how long discovery may take on a loaded machine.
   std::vector<std::string> args = {"play", scenario, "--timeout", "20"};
   if (!security_dir_.empty()) args.insert(args.end(), {"--security", security_dir_, "--identity", "planner"});
+  if (!ros_namespace_.empty()) args.insert(args.end(), {"--namespace", ros_namespace_});
   auto child = test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, args, env);
   if (!child) return std::move(child).error();
   auto status = child->wait(timeout);

@@ -28,6 +28,10 @@ struct StationOptions {
   // Non-empty: DDS Security from this station folder (hubctl security init/add), each hub as the
   // identity named after it, hubsim as "hubsim", hubctl play as "planner".
   std::string security_dir;
+  // Non-empty ("/cell_a"): the station under this ROS namespace — its hubs' (namespace: in their
+  // hub files, the other hubs' States they read under it too), hubsim's and play's (--namespace),
+  // for stations sharing one domain (docs/plant.md).
+  std::string ros_namespace;
 };
 
 // Move-only. The destructor stops every process (ChildProcess kills what still runs) and removes
@@ -54,12 +58,17 @@ class StationProcesses {
   [[nodiscard]] std::string logs() const;
 
  private:
-  StationProcesses(const test_support::TestDomain& domain, std::string dir, std::string security_dir)
-      : domain_(&domain), dir_(std::move(dir)), security_dir_(std::move(security_dir)) {}
+  StationProcesses(const test_support::TestDomain& domain, std::string dir, std::string security_dir,
+                   std::string ros_namespace)
+      : domain_(&domain),
+        dir_(std::move(dir)),
+        security_dir_(std::move(security_dir)),
+        ros_namespace_(std::move(ros_namespace)) {}
 
   const test_support::TestDomain* domain_;
   std::string dir_;  // the hub files; removed by the destructor ("" once moved from)
   std::string security_dir_;
+  std::string ros_namespace_;
   std::vector<std::pair<std::string, test_support::ChildProcess>> hubs_;  // hubd by hub
   std::optional<test_support::ChildProcess> hubsim_;
 };

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/dds/ros_names.h"
+
 #include "command_channel.h"
 #include "commands.h"
 #include "recording_player.h"
@@ -30,6 +32,7 @@ struct PlayCommandOptions {
   bool quiet = false;
   bool check_only = false;
   std::uint32_t lifespan_ms = kDefaultCommandLifespanMs;
+  std::string ros_namespace;  // a scenario's station: its hubs' namespace and its simulation's
 };
 
 int run_recording(const PlayCommandOptions& options) {
@@ -81,6 +84,7 @@ int run_play(const PlayCommandOptions& options) {
   play.rounds = options.rounds;
   play.quiet = options.quiet;
   play.command_lifespan_ms = options.lifespan_ms;
+  play.ros_namespace = options.ros_namespace;
   ScenarioRunner runner(*participant, *scenario, play, stdout);
   switch (runner.run()) {
     case PlayOutcome::kPassed:
@@ -124,6 +128,15 @@ void add_play_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet,-q", options->quiet, "Report failures and the summary only");
   cmd->add_flag("--check", options->check_only, "Only load and check the file (a scenario)");
   add_lifespan_option(*cmd, options->lifespan_ms);
+  cmd->add_option(
+         "--namespace", options->ros_namespace,
+         "Scenario: the station's ROS namespace, e.g. /cell_a: its hubs are found under it (their hub "
+         "files' namespace:) and the simulation's topics are under it (hubsim --namespace); for stations "
+         "that share one domain (docs/plant.md)")
+      ->check([](const std::string& value) {
+        auto valid = dds::validate_ros_topic_name(value);
+        return valid ? std::string() : valid.error().message;
+      });
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_play(*options); });
 }

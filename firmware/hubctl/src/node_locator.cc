@@ -60,7 +60,8 @@ std::string snake_case(std::string_view camel) {
 
 std::optional<NodeEndpoints> locate_node(const dds::DiscoverySnapshot& snapshot,
                                          const msgs::TypeRegistry& types, std::string_view hub,
-                                         std::string_view node, std::string& why) {
+                                         std::string_view node, std::string& why,
+                                         std::string_view ros_namespace) {
   std::set<dds::Guid> keys;
   for (const auto& participant : snapshot.participants) {
     if (!participant.local && participant.name == hub) keys.insert(participant.key);
@@ -80,6 +81,10 @@ std::optional<NodeEndpoints> locate_node(const dds::DiscoverySnapshot& snapshot,
     if (keys.count(endpoint.participant_key) == 0) continue;
     auto ros = dds::dds_to_ros_topic(endpoint.topic_name);
     if (!ros) continue;
+    if (!ros_namespace.empty() && !(ros->starts_with(ros_namespace) && ros->size() > ros_namespace.size() &&
+                                    (*ros)[ros_namespace.size()] == '/')) {
+      continue;  // the same hub name in another station
+    }
     (endpoint.direction == dds::EndpointDirection::kWriter ? writers : readers)
         .push_back(Endpoint{*ros, endpoint.type_name});
   }
@@ -154,18 +159,22 @@ std::optional<NodeEndpoints> locate_node(const dds::DiscoverySnapshot& snapshot,
 }
 
 Expected<NodeEndpoints> find_node(const dds::Participant& participant, const msgs::TypeRegistry& types,
-                                  std::string_view hub, std::string_view node, Duration timeout) {
+                                  std::string_view hub, std::string_view node, Duration timeout,
+                                  std::string_view ros_namespace) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::string why;
   for (;;) {
     auto snapshot = dds::discover(participant);
     if (!snapshot) return std::move(snapshot).error();
-    if (auto found = locate_node(*snapshot, types, hub, node, why)) return *found;
+    if (auto found = locate_node(*snapshot, types, hub, node, why, ros_namespace)) return *found;
     if (std::chrono::steady_clock::now() >= deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  return make_error(ErrorCode::kNotFound,
-                    fmt::format("{}/{}: {} (waited {:.1f} s)", hub, node, why, to_seconds(timeout)));
+  return make_error(
+      ErrorCode::kNotFound,
+      fmt::format("{}/{}{}: {} (waited {:.1f} s)", hub, node,
+                  ros_namespace.empty() ? std::string() : fmt::format(" under {}", ros_namespace), why,
+                  to_seconds(timeout)));
 }
 
 }  // namespace hubrt::hubctl

@@ -41,14 +41,18 @@ struct NodeEndpoints {
 };
 
 // Decides from one snapshot; nothing when the hub or the node is not (yet) seen, with the reason
-// in `why` (what the hub's participant does publish, so a typo shows). Thread-safe.
+// in `why` (what the hub's participant does publish, so a typo shows). `ros_namespace` ("" or
+// "/cell_a"): only the hub's topics under it count — stations sharing one domain each run a hub of
+// that name, every one under its station's namespace (docs/plant.md). Thread-safe.
 std::optional<NodeEndpoints> locate_node(const dds::DiscoverySnapshot& snapshot,
                                          const msgs::TypeRegistry& types, std::string_view hub,
-                                         std::string_view node, std::string& why);
+                                         std::string_view node, std::string& why,
+                                         std::string_view ros_namespace = {});
 
 // Polls discovery until the node is found. Errors: kNotFound after `timeout` with the reason.
 Expected<NodeEndpoints> find_node(const dds::Participant& participant, const msgs::TypeRegistry& types,
-                                  std::string_view hub, std::string_view node, Duration timeout);
+                                  std::string_view hub, std::string_view node, Duration timeout,
+                                  std::string_view ros_namespace = {});
 
 // "ToolEcu" -> "tool_ecu". Thread-safe.
 std::string snake_case(std::string_view camel);

@@ -18,7 +18,7 @@ class ScenarioRunner::Impl {
         out_(out),
         traffic_(participant, options.discovery_timeout,
                  seconds(1.0 / (options.rate_hz > 0 ? options.rate_hz : scenario.rate_hz)),
-                 options.command_lifespan_ms),
+                 options.command_lifespan_ms, options.ros_namespace),
         steps_(traffic_) {}
 
   PlayOutcome run() {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "hubrt/base/time.h"
 #include "hubrt/dds/participant.h"
@@ -20,6 +21,7 @@ struct PlayOptions {
   int rounds = 1;                                         // 0: until stopped (Ctrl-C)
   bool quiet = false;                                     // report failures and the summary only
   std::uint32_t command_lifespan_ms = 1000;               // LIFESPAN of the commands (0: none)
+  std::string ros_namespace;                              // the station's ("" or "/cell_a"; docs/plant.md)
 };
 
 enum class PlayOutcome : std::uint8_t {

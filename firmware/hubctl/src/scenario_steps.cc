@@ -237,7 +237,7 @@ StepResult StepExecutor::station(const Step& step) {
   fields.emplace(fields.begin(), "target_type", "station");
   auto document = build(**type, fields);
   if (!document) return failed(document.error().message);
-  auto w = traffic_.writer(std::string(kStationCommandTopic), **type);
+  auto w = traffic_.writer(traffic_.station_topic(kStationCommandTopic), **type);
   if (!w) return failed(fmt::format("{} (is hubsim running?)", w.error().message));
   return write_once(**w, **type, *document);
 }
@@ -249,7 +249,7 @@ StepResult StepExecutor::sim_input(const Step& step) {
       build(**type,
             {{"hub", step.target.hub}, {"signal", step.signal}, {"active", step.active ? "true" : "false"}});
   if (!document) return failed(document.error().message);
-  return to_hub(std::string(kSimInputTopic), step.target.hub, **type, *document);
+  return to_hub(traffic_.station_topic(kSimInputTopic), step.target.hub, **type, *document);
 }
 
 StepResult StepExecutor::badge(const Step& step) {
@@ -257,7 +257,7 @@ StepResult StepExecutor::badge(const Step& step) {
   if (!type) return failed(type.error().message);
   auto document = build(**type, {{"hub", step.target.hub}, {"reader", step.signal}, {"text", step.text}});
   if (!document) return failed(document.error().message);
-  return to_hub(std::string(kSimBadgeTopic), step.target.hub, **type, *document);
+  return to_hub(traffic_.station_topic(kSimBadgeTopic), step.target.hub, **type, *document);
 }
 
 // To the operator screens discovery knows (the writer waits until they are matched, so an
@@ -271,22 +271,22 @@ StepResult StepExecutor::instruction(const Step& step) {
   if (!looked_for_screens_) {
     looked_for_screens_ = true;
     const auto until = SteadyClock::now() + kFirstScreenPatience;
-    for (auto known = traffic_.readers_now(kInstructionTopic);
+    for (auto known = traffic_.readers_now(traffic_.station_topic(kInstructionTopic));
          known && *known == 0 && SteadyClock::now() < until;
-         known = traffic_.readers_now(kInstructionTopic)) {
+         known = traffic_.readers_now(traffic_.station_topic(kInstructionTopic))) {
       traffic_.pump_for(kPoll);
     }
   }
   auto document = build(
       **type, {{"step", step.signal}, {"text", step.text}, {"seq", std::to_string(++instruction_seq_)}});
   if (!document) return failed(document.error().message);
-  auto screens = traffic_.readers_now(kInstructionTopic);
+  auto screens = traffic_.readers_now(traffic_.station_topic(kInstructionTopic));
   if (!screens) return failed(screens.error().message);
-  auto w = traffic_.writer(std::string(kInstructionTopic), **type, *screens);
+  auto w = traffic_.writer(traffic_.station_topic(kInstructionTopic), **type, *screens);
   if (!w) return failed(w.error().message);
   // Like a command, the instruction is a state (docs/operator-screen.md): sent at once, then again
   // at the scenario's rate until the next one, so a screen opened later shows it too.
-  Plan& plan = traffic_.plans()[std::string(kInstructionTopic)];
+  Plan& plan = traffic_.plans()[traffic_.station_topic(kInstructionTopic)];
   plan.writer = *w;
   plan.sample.emplace(*(*type)->descriptor);
   if (auto ok = msgs::from_json(**type, *document, plan.sample->data()); !ok)
@@ -303,7 +303,7 @@ StepResult StepExecutor::fault(const Step& step) {
                                  {"fault", step.fault},
                                  {"value", std::to_string(step.value)}});
   if (!document) return failed(document.error().message);
-  return to_hub(std::string(kSimFaultTopic), step.target.hub, **type, *document);
+  return to_hub(traffic_.station_topic(kSimFaultTopic), step.target.hub, **type, *document);
 }
 
 // Once, to every hub's sim bridge, after the one addressed is matched.

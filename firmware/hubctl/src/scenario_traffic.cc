@@ -16,11 +16,13 @@
 namespace hubrt::hubctl {
 
 ScenarioTraffic::ScenarioTraffic(const dds::Participant& participant, Duration discovery_timeout,
-                                 Duration period, std::uint32_t command_lifespan_ms)
+                                 Duration period, std::uint32_t command_lifespan_ms,
+                                 std::string ros_namespace)
     : participant_(participant),
       discovery_timeout_(discovery_timeout),
       period_(period),
-      command_lifespan_ms_(command_lifespan_ms) {}
+      command_lifespan_ms_(command_lifespan_ms),
+      ros_namespace_(std::move(ros_namespace)) {}
 
 // ---- the loop: samples in, due commands out -----------------------------------------------------
 
@@ -62,7 +64,8 @@ void ScenarioTraffic::send(Plan& plan) {
 Expected<NodeEndpoints> ScenarioTraffic::locate(const StepTarget& target) {
   const std::string key = fmt::format("{}/{}", target.hub, target.node);
   if (auto known = located_.find(key); known != located_.end()) return known->second;
-  auto found = find_node(participant_, msgs::all_types(), target.hub, target.node, discovery_timeout_);
+  auto found =
+      find_node(participant_, msgs::all_types(), target.hub, target.node, discovery_timeout_, ros_namespace_);
   if (!found) return found;
   located_.emplace(key, *found);
   return found;
@@ -98,7 +101,7 @@ Expected<std::pair<StateChannel*, std::string>> ScenarioTraffic::state_of(const 
   if (target.station) {
     auto type = known_type("hub_msgs/msg/StationState");
     if (!type) return std::move(type).error();
-    auto c = channel(std::string(kStationStateTopic), **type);
+    auto c = channel(station_topic(kStationStateTopic), **type);
     if (!c) return std::move(c).error();
     return std::make_pair(*c, std::string());
   }

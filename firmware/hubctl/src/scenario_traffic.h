@@ -75,8 +75,10 @@ class ScenarioTraffic {
  public:
   // `participant` must outlive this. `period`: how often each plan is sent again.
   // `command_lifespan_ms`: the LIFESPAN of command writers (command_writer(); 0: none).
+  // `ros_namespace` ("" or "/cell_a"): the station's; its hubs are looked for under it and the
+  // station's other topics (station_topic()) are under it too.
   ScenarioTraffic(const dds::Participant& participant, Duration discovery_timeout, Duration period,
-                  std::uint32_t command_lifespan_ms);
+                  std::uint32_t command_lifespan_ms, std::string ros_namespace = {});
 
   // The rate's clock starts now: the first resend of a plan is due at once.
   void start() { next_send_ = SteadyClock::now(); }
@@ -88,6 +90,12 @@ class ScenarioTraffic {
   static void send(Plan& plan);
   // The commands sent at the rate, by hub (hub layout) or hub/node (node-type layout).
   std::map<std::string, Plan>& plans() { return plans_; }
+
+  // A topic of this station that is no hub's (kSimInputTopic, kInstructionTopic, ...): under the
+  // station's namespace.
+  [[nodiscard]] std::string station_topic(std::string_view topic) const {
+    return ros_namespace_ + std::string(topic);
+  }
 
   // Where `target` is (looked up once, then remembered). Errors: as find_node.
   Expected<NodeEndpoints> locate(const StepTarget& target);
@@ -116,6 +124,7 @@ class ScenarioTraffic {
   Duration discovery_timeout_;
   Duration period_;
   std::uint32_t command_lifespan_ms_;
+  std::string ros_namespace_;
   SteadyClock::time_point next_send_{};
   std::map<std::string, NodeEndpoints> located_;
   std::map<std::string, std::unique_ptr<StateChannel>> states_;

@@ -1,6 +1,7 @@
 // Finding a node's command and State topics from discovery, under both layouts.
 #include "node_locator.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -30,8 +31,9 @@ class NodeLocatorTest : public ::testing::Test {
     e.participant_key = guid(owner);
     snapshot_.endpoints.push_back(std::move(e));
   }
-  std::optional<NodeEndpoints> locate(std::string_view hub, std::string_view node) {
-    return locate_node(snapshot_, msgs::all_types(), hub, node, why_);
+  std::optional<NodeEndpoints> locate(std::string_view hub, std::string_view node,
+                                      std::string_view ros_namespace = {}) {
+    return locate_node(snapshot_, msgs::all_types(), hub, node, why_, ros_namespace);
   }
 
   dds::DiscoverySnapshot snapshot_;
@@ -69,6 +71,24 @@ TEST_F(NodeLocatorTest, HubLayoutWithANamespace) {
   EXPECT_EQ(found->field, "dock");
   EXPECT_EQ(found->target_type, "dock_ecu") << "the hub type, from the hub command's type name";
   EXPECT_EQ(found->node_command_type->ros_name, "hub_msgs/msg/DockCommand");
+}
+
+// Stations sharing one domain (docs/plant.md): a Dock ECU in each, all named dock_ecu, each under
+// its station's namespace; the namespace picks one, and none is found under a namespace no station has.
+TEST_F(NodeLocatorTest, TheNamespacePicksOneOfSeveralStationsHubsOfTheSameName) {
+  for (std::uint8_t k = 1; k <= 3; ++k) {
+    participant(k, "dock_ecu");
+    endpoint(k, kWriter, fmt::format("rt/cell{}/dock_ecu/dock/state", k), "hub_msgs::msg::dds_::DockState_");
+    endpoint(k, kReader, fmt::format("rt/cell{}/dock/command", k), "hub_msgs::msg::dds_::DockCommand_");
+  }
+  auto found = locate("dock_ecu", "dock", "/cell2");
+  ASSERT_TRUE(found) << why_;
+  EXPECT_EQ(found->state_topic, "/cell2/dock_ecu/dock/state");
+  EXPECT_EQ(found->command_topic, "/cell2/dock/command");
+  // A namespace is a whole name: /cell is no prefix of /cell2's topics.
+  EXPECT_FALSE(locate("dock_ecu", "dock", "/cell"));
+  EXPECT_FALSE(locate("dock_ecu", "dock", "/cell4"));
+  EXPECT_THAT(why_, HasSubstr("publishes no State of a node 'dock'"));
 }
 
 TEST_F(NodeLocatorTest, AnotherHubsEndpointsDoNotCount) {

@@ -19,6 +19,7 @@
 
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/participant.h"
+#include "hubrt/dds/ros_names.h"
 #include "hubrt/security/participant_security.h"
 #include "hubrt/sim/station/station_bridge.h"
 #include "hubrt/sim/station/station_config.h"
@@ -167,6 +168,14 @@ int main(int argc, char** argv) {
                                   "DDS Security: the identity to join as (role simulator)");
   security->needs(identity);
   identity->needs(security);
+  app.add_option(
+         "--namespace", options.ros_namespace,
+         "The station's ROS namespace, e.g. /cell_a: in front of every simulation topic, as its hubs' "
+         "namespace: is in front of theirs (a plant whose stations share one domain; docs/plant.md)")
+      ->check([](const std::string& value) {
+        auto valid = hubrt::dds::validate_ros_topic_name(value);
+        return valid ? std::string() : valid.error().message;
+      });
   app.add_option("--tool-ecu", options.tool_ecu, "Instance name of the Tool ECU");
   app.add_option("--rsp-ecu", options.rsp_ecu, "Instance name of the RSP ECU");
   app.add_option("--dock-ecu", options.dock_ecu, "Instance name of the Dock ECU");
