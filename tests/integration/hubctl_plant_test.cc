@@ -110,8 +110,12 @@ TEST_F(HubctlPlantTest, RecordKeepsEachChannelsStationDomainAndWireName) {
         << channel.topic;
     EXPECT_EQ("/" + station(k) + channel.metadata.at("hubrt.wire_topic"), channel.topic);
     // Each hub's topics under its own station only.
-    if (channel.topic.find("rsp_ecu") != std::string::npos) EXPECT_TRUE(second) << channel.topic;
-    if (channel.topic.find("dock_ecu") != std::string::npos) EXPECT_TRUE(first) << channel.topic;
+    if (channel.topic.find("rsp_ecu") != std::string::npos) {
+      EXPECT_TRUE(second) << channel.topic;
+    }
+    if (channel.topic.find("dock_ecu") != std::string::npos) {
+      EXPECT_TRUE(first) << channel.topic;
+    }
     if (second && channel.topic.find("rsp_ecu") != std::string::npos && per_topic[channel.topic] > 0) {
       rsp_seen = true;
     }
