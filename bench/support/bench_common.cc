@@ -4,17 +4,35 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
+
+#include "hubrt/dds/domain.h"
 
 namespace hubrt::bench {
 
 Expected<test_support::TestDomain> join_private_domain() {
-  auto domain = test_support::TestDomain::acquire();
-  if (!domain) return domain;
-  for (const auto& [name, value] : domain->env()) {
-    setenv(name.c_str(), value.c_str(), 1);  // NOLINT(concurrency-mt-unsafe): before any thread
+  // NOLINTBEGIN(concurrency-mt-unsafe): getenv and setenv before any thread
+  const char* probed = std::getenv(kProbeDomainEnvVar);
+  std::optional<std::uint32_t> probed_id;
+  if (probed != nullptr) {
+    char* end = nullptr;
+    const unsigned long id = std::strtoul(probed, &end, 10);
+    if (*probed == '\0' || *end != '\0' || id > dds::kMaxDomainId) {
+      return make_error(
+          ErrorCode::kInvalidArgument,
+          fmt::format("{}={}: not a DDS domain id (0-{})", kProbeDomainEnvVar, probed, dds::kMaxDomainId));
+    }
+    probed_id = static_cast<std::uint32_t>(id);
   }
+  auto domain = probed_id ? test_support::TestDomain::take(*probed_id) : test_support::TestDomain::acquire();
+  if (!domain) return domain;
+  for (const auto& [name, value] : domain->env()) setenv(name.c_str(), value.c_str(), 1);
+  if (const char* xml = std::getenv(kProbeConfigEnvVar); probed_id && xml != nullptr) {
+    setenv("CYCLONEDDS_URI", xml, 1);
+  }
+  // NOLINTEND(concurrency-mt-unsafe)
   return domain;
 }
 

@@ -18,7 +18,12 @@ namespace hubrt::bench {
 
 // Takes a private domain id (TestDomain) and puts it and the loopback configuration into this
 // process's environment, for the raw C API participants created here and for every child.
-// Errors: no free domain id.
+// As a probe of a plant (bench/plant.py): with HUBRT_BENCH_DOMAIN set, that domain instead (where
+// the plant's stations run), and HUBRT_BENCH_CYCLONEDDS_URI, when set, the plant's Cyclone
+// configuration instead of the loopback one. Errors: no free domain id; HUBRT_BENCH_DOMAIN not an
+// id or held by another benchmark.
+inline constexpr const char* kProbeDomainEnvVar = "HUBRT_BENCH_DOMAIN";
+inline constexpr const char* kProbeConfigEnvVar = "HUBRT_BENCH_CYCLONEDDS_URI";
 Expected<test_support::TestDomain> join_private_domain();
 
 // Starts hubd (this build's) with `args` after `--board host-sim --log-level warn`; returns at

@@ -32,6 +32,14 @@ Expected<TestDomain> TestDomain::try_lock(std::uint32_t domain_id) {
   return make_error(ErrorCode::kBusy, path + " is locked by another process");
 }
 
+Expected<TestDomain> TestDomain::take(std::uint32_t domain_id) {
+  if (domain_id > dds::kMaxDomainId) {
+    return make_error(ErrorCode::kInvalidArgument, "DDS domain id " + std::to_string(domain_id) +
+                                                       " is above " + std::to_string(dds::kMaxDomainId));
+  }
+  return try_lock(domain_id);
+}
+
 Expected<TestDomain> TestDomain::acquire() {
   constexpr std::uint32_t kCount = kLastDomainId - kFirstDomainId + 1;
   const auto start = static_cast<std::uint32_t>(getpid()) % kCount;

@@ -1,6 +1,7 @@
 #include "hubrt/test_support/test_domain.h"
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,24 @@ int probe_lock(const std::string& path) {
   EXPECT_TRUE(status) << status.error().message;
   if (!status) return -1;
   return status->exited_with(0) ? 0 : (status->exited_with(1) ? 1 : -1);
+}
+
+// A benchmark probing a plant's domain (bench/plant.py) takes that id itself: once, while held.
+TEST(TestDomain, TakeHoldsTheNamedIdOnceAndRefusesAnIdAboveTheLast) {
+  auto acquired = TestDomain::acquire();  // a free id now, so that taking it cannot meet another test's
+  ASSERT_TRUE(acquired) << acquired.error().message;
+  const std::uint32_t id = acquired->domain_id();
+  std::optional<TestDomain> held(std::move(*acquired));
+  auto again = TestDomain::take(id);
+  ASSERT_FALSE(again);
+  EXPECT_EQ(again.error().code, ErrorCode::kBusy);
+  held.reset();  // the lock goes
+  auto taken = TestDomain::take(id);
+  ASSERT_TRUE(taken) << taken.error().message;
+  EXPECT_EQ(taken->domain_id(), id);
+  auto above = TestDomain::take(dds::kMaxDomainId + 1);
+  ASSERT_FALSE(above);
+  EXPECT_EQ(above.error().code, ErrorCode::kInvalidArgument);
 }
 
 TEST(TestDomainRange, HoldsConsecutiveIdsEachLockedUntilItGoes) {

@@ -28,6 +28,10 @@ class TestDomain {
   // Takes the first free id, starting at a point derived from the process id so that parallel
   // tests rarely contend. Errors: kBusy if every id is taken; kIo if no lock file can be opened.
   static Expected<TestDomain> acquire();
+  // Takes `domain_id` itself, any id up to dds::kMaxDomainId, without waiting: a benchmark that
+  // probes a domain other programs already run in (bench/plant.py). Errors: kInvalidArgument above
+  // dds::kMaxDomainId; kBusy when another process holds it; kIo when its lock file cannot be opened.
+  static Expected<TestDomain> take(std::uint32_t domain_id);
 
   ~TestDomain();
   TestDomain(const TestDomain&) = delete;
