@@ -48,6 +48,15 @@ TEST(StationSharedDomain, TwoStationsInOneDomainEachPassTheUseCaseUnderTheirName
   EXPECT_TRUE(status->exited_with(1)) << status->describe() << stray->stdout_text();
   EXPECT_NE(stray->stdout_text().find("nobody reads rt/cell_c/sim/station/command"), std::string::npos)
       << stray->stdout_text();
+  // A namespace a hub file would refuse is refused here too, before anything is sent.
+  auto refused =
+      test_support::ChildProcess::start(HUBRT_HUBCTL_PATH, {"play", scenario, "--namespace", "/cell-a"}, env);
+  ASSERT_TRUE(refused) << refused.error().message;
+  auto refusal = refused->wait(kPatience);
+  ASSERT_TRUE(refusal) << refusal.error().message;
+  EXPECT_TRUE(refusal->exited_with(2)) << refusal->describe();
+  EXPECT_NE(refused->stderr_text().find("'/cell-a' is not a valid ROS namespace"), std::string::npos)
+      << refused->stderr_text();
 }
 
 }  // namespace

@@ -24,16 +24,13 @@ Expected<std::string> ros_name(const YamlMap& map, std::string_view key) {
 Expected<std::string> ros_namespace(const YamlMap& map) {
   auto value = map.string_or("namespace", "");
   if (!value || value->empty() || *value == "/") return value ? Expected<std::string>(std::string()) : value;
-  std::string_view rest = *value;
-  if (rest.front() != '/') return map.error_at("namespace", "must start with '/', e.g. /station1");
-  rest.remove_prefix(1);
-  if (!rest.empty() && rest.back() == '/') rest.remove_suffix(1);
-  while (!rest.empty()) {
-    const auto slash = rest.find('/');
-    if (!is_ros_name_token(rest.substr(0, slash))) {
-      return map.error_at("namespace", fmt::format("'{}' is not a valid ROS namespace", *value));
-    }
-    rest = slash == std::string_view::npos ? std::string_view() : rest.substr(slash + 1);
+  std::string_view checked = *value;
+  if (checked.size() > 1 && checked.back() == '/') checked.remove_suffix(1);
+  if (auto ok = check_ros_namespace(checked); !ok) {
+    // The message names the namespace as written, trailing '/' and all.
+    return map.error_at("namespace", checked.front() != '/'
+                                         ? ok.error().message
+                                         : fmt::format("'{}' is not a valid ROS namespace", *value));
   }
   std::string normalized = *value;
   if (normalized.back() == '/') normalized.pop_back();
@@ -151,6 +148,21 @@ bool is_ros_name_token(std::string_view name) noexcept {
     if (!alpha(c) && !(c >= '0' && c <= '9') && c != '_') return false;
   }
   return true;
+}
+
+Expected<void> check_ros_namespace(std::string_view text) {
+  if (text.empty() || text.front() != '/') {
+    return make_error(ErrorCode::kInvalidArgument, "must start with '/', e.g. /station1");
+  }
+  // Every part between the slashes a token: "/", "//", "/a//b" and "/a/" have an empty one.
+  for (std::string_view rest = text.substr(1);;) {
+    const auto slash = rest.find('/');
+    if (!is_ros_name_token(rest.substr(0, slash))) {
+      return make_error(ErrorCode::kInvalidArgument, fmt::format("'{}' is not a valid ROS namespace", text));
+    }
+    if (slash == std::string_view::npos) return {};
+    rest.remove_prefix(slash + 1);
+  }
 }
 
 Expected<HubConfig> parse_hub_config(const YamlMap& root) {

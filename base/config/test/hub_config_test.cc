@@ -61,6 +61,29 @@ subscriptions:
   EXPECT_EQ(config->subscriptions[0].timeout, milliseconds(300));
 }
 
+// The one rule for a namespace on a command line (hubsim, hubctl play) and in a hub file.
+TEST(HubConfig, ANamespaceIsSlashAndNameTokensAsOnTheCommandLineAndInTheHubFile) {
+  for (const char* good : {"/station1", "/plant/cell_a", "/A_1"})
+    EXPECT_TRUE(check_ros_namespace(good)) << good;
+  for (const char* bad : {"", "station1", "/", "/cell_a/", "//", "/a//b", "/1cell", "/_cell", "/cell-a"}) {
+    auto checked = check_ros_namespace(bad);
+    ASSERT_FALSE(checked) << bad;
+    EXPECT_EQ(checked.error().code, ErrorCode::kInvalidArgument);
+  }
+  EXPECT_EQ(check_ros_namespace("cell").error().message, "must start with '/', e.g. /station1");
+  EXPECT_EQ(check_ros_namespace("/cell-a").error().message, "'/cell-a' is not a valid ROS namespace");
+  // The hub file also takes none ("" or "/") and a trailing '/', and names what was written.
+  EXPECT_EQ(parse("hub: dock_ecu\nnamespace: /\nnodes:\n  dock: {type: dock, slots: []}\n")->ros_namespace,
+            "");
+  EXPECT_EQ(
+      parse("hub: dock_ecu\nnamespace: /cell_a/\nnodes:\n  dock: {type: dock, slots: []}\n")->ros_namespace,
+      "/cell_a");
+  auto doubled = parse("hub: dock_ecu\nnamespace: /a//b/\nnodes:\n  dock: {type: dock, slots: []}\n");
+  ASSERT_FALSE(doubled);
+  EXPECT_NE(doubled.error().message.find("'/a//b/' is not a valid ROS namespace"), std::string::npos)
+      << doubled.error().message;
+}
+
 TEST(HubConfig, TheBudgetOfImmediateStatesDefaultsTo10MsAndIsBounded) {
   auto config = parse("hub: dock_ecu\nnodes:\n  dock: {type: dock}\n");
   ASSERT_TRUE(config) << config.error().message;

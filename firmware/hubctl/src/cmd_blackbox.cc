@@ -123,7 +123,7 @@ void add_blackbox_command(CLI::App& app, int& exit_code) {
       "with hubctl echo/watch --from, or Foxglove. At most one file per 10 s on request. Exit status: 0 "
       "written; 1 no hub, no answer or the hub could not write it; 2 bad arguments.");
   cmd->add_option("hub", options->hub, "The hub's name, e.g. dock_ecu")->required();
-  cmd->add_option("--namespace", options->ros_namespace, "The station's ROS namespace, e.g. /station1");
+  add_namespace_option(*cmd, options->ros_namespace, "The station's ROS namespace, e.g. /station1");
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_blackbox(*options); });
 }

@@ -9,8 +9,6 @@
 
 #include <fmt/format.h>
 
-#include "hubrt/dds/ros_names.h"
-
 #include "command_channel.h"
 #include "commands.h"
 #include "recording_player.h"
@@ -128,15 +126,11 @@ void add_play_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet,-q", options->quiet, "Report failures and the summary only");
   cmd->add_flag("--check", options->check_only, "Only load and check the file (a scenario)");
   add_lifespan_option(*cmd, options->lifespan_ms);
-  cmd->add_option(
-         "--namespace", options->ros_namespace,
-         "Scenario: the station's ROS namespace, e.g. /cell_a: its hubs are found under it (their hub "
-         "files' namespace:) and the simulation's topics are under it (hubsim --namespace); for stations "
-         "that share one domain (docs/plant.md)")
-      ->check([](const std::string& value) {
-        auto valid = dds::validate_ros_topic_name(value);
-        return valid ? std::string() : valid.error().message;
-      });
+  add_namespace_option(
+      *cmd, options->ros_namespace,
+      "Scenario: the station's ROS namespace, e.g. /cell_a: its hubs are found under it (their "
+      "hub files' namespace:) and the simulation's topics are under it (hubsim --namespace); for "
+      "stations that share one domain (docs/plant.md)");
   add_domain_options(*cmd, options->domain);
   cmd->callback([options, &exit_code] { exit_code = run_play(*options); });
 }

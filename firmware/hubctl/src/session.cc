@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "hubrt/config/hub_config.h"
 #include "hubrt/dds/discovery.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/ros_names.h"
@@ -32,6 +33,13 @@ void add_domain_options(CLI::App& app, DomainOptions& options) {
   app.add_option("--domain", options.domain, "DDS domain id (default: $ROS_DOMAIN_ID or 0)")
       ->check(CLI::Range(0, 232));
   add_connection_options(app, options);
+}
+
+void add_namespace_option(CLI::App& app, std::string& ros_namespace, const std::string& description) {
+  app.add_option("--namespace", ros_namespace, description)->check([](const std::string& value) {
+    auto valid = config::check_ros_namespace(value);
+    return valid ? std::string() : valid.error().message;
+  });
 }
 
 void add_connection_options(CLI::App& app, DomainOptions& options) {

@@ -30,6 +30,10 @@ void add_domain_options(CLI::App& app, DomainOptions& options);
 // --identity, --timeout (the plant-wide tools take --domain as a set: plant_session.h).
 void add_connection_options(CLI::App& app, DomainOptions& options);
 
+// --namespace: a station's ROS namespace ("/station1"), checked as a hub file's `namespace:` is
+// (config::check_ros_namespace); `description` says what it is for in this command.
+void add_namespace_option(CLI::App& app, std::string& ros_namespace, const std::string& description);
+
 // Exit codes shared by all commands: the table of hubrt/base/exit_codes.h, shared with hubd.
 inline constexpr int kExitOk = exit_codes::kOk;
 inline constexpr int kExitFailed = exit_codes::kFailure;  // the check failed, nothing received, ...

@@ -17,9 +17,9 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include "hubrt/config/hub_config.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/participant.h"
-#include "hubrt/dds/ros_names.h"
 #include "hubrt/security/participant_security.h"
 #include "hubrt/sim/station/station_bridge.h"
 #include "hubrt/sim/station/station_config.h"
@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
          "The station's ROS namespace, e.g. /cell_a: in front of every simulation topic, as its hubs' "
          "namespace: is in front of theirs (a plant whose stations share one domain; docs/plant.md)")
       ->check([](const std::string& value) {
-        auto valid = hubrt::dds::validate_ros_topic_name(value);
+        auto valid = hubrt::config::check_ros_namespace(value);
         return valid ? std::string() : valid.error().message;
       });
   app.add_option("--tool-ecu", options.tool_ecu, "Instance name of the Tool ECU");

@@ -86,4 +86,11 @@ Expected<HubConfig> parse_hub_config(const YamlMap& root);
 // True when `name` can be one ROS name token: [A-Za-z][A-Za-z0-9_]*.
 bool is_ros_name_token(std::string_view name) noexcept;
 
+// A ROS namespace as a command line names it (`hubsim --namespace`, `hubctl play --namespace`):
+// '/' and ROS name tokens separated by '/', no '/' at the end ("/station1", "/plant/cell_a"). The
+// hub file's `namespace:` is checked with it too, after taking "" and "/" as none and dropping a
+// trailing '/'. Errors (kInvalidArgument): "must start with '/', e.g. /station1", or "'<text>' is
+// not a valid ROS namespace". Thread-safe.
+Expected<void> check_ros_namespace(std::string_view text);
+
 }  // namespace hubrt::config
