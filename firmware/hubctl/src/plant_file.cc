@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hubrt/config/hub_config.h"
 #include "hubrt/config/yaml_map.h"
 #include "hubrt/dds/domain.h"
 
@@ -83,13 +84,7 @@ Expected<PlantFile> plant_from_root(const Expected<config::YamlMap>& root) {
 }  // namespace
 
 bool is_station_name(std::string_view name) noexcept {
-  if (name.empty() || name.size() > kMaxNameLength) return false;
-  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
-  if (!letter(name.front())) return false;
-  for (const char c : name) {
-    if (!letter(c) && !(c >= '0' && c <= '9') && c != '_') return false;
-  }
-  return true;
+  return name.size() <= kMaxNameLength && config::is_ros_name_token(name);
 }
 
 Expected<PlantFile> load_plant_file(const std::string& path) {

@@ -40,22 +40,21 @@ std::unique_ptr<TapSubscription> PlantTap::subscribe(std::size_t sample_capacity
   return std::make_unique<TapSubscription>(std::move(queue));
 }
 
-std::vector<std::string> PlantTap::written_topics() const {
+std::vector<std::string> PlantTap::each_station(std::vector<std::string> (StationTap::*list)() const) const {
   std::vector<std::string> out;
   for (std::size_t k = 0; k < taps_.size(); ++k) {
-    auto names = named(stations_[k], taps_[k]->written_topics());
+    auto names = named(stations_[k], ((*taps_[k]).*list)());
     out.insert(out.end(), names.begin(), names.end());
   }
   return out;
 }
 
+std::vector<std::string> PlantTap::written_topics() const {
+  return each_station(&StationTap::written_topics);
+}
+
 std::vector<std::string> PlantTap::unknown_types() const {
-  std::vector<std::string> out;
-  for (std::size_t k = 0; k < taps_.size(); ++k) {
-    auto names = named(stations_[k], taps_[k]->unknown_types());
-    out.insert(out.end(), names.begin(), names.end());
-  }
-  return out;
+  return each_station(&StationTap::unknown_types);
 }
 
 TapCounters PlantTap::counters() const {

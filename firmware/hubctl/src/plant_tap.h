@@ -37,6 +37,8 @@ class PlantTap {
 
  private:
   PlantTap() = default;
+  // `list` of every station's tap, each name under its station's (as the topics are).
+  std::vector<std::string> each_station(std::vector<std::string> (StationTap::*list)() const) const;
   std::vector<std::string> stations_;
   std::vector<std::unique_ptr<StationTap>> taps_;
 };
