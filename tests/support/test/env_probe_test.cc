@@ -72,18 +72,32 @@ TEST(TestDomainEnv, DiscoverySeesAnotherProcessAsRemote) {
   ASSERT_TRUE(probe) << probe.error().message;
   ASSERT_TRUE(probe->wait_for_output("probe: reading", kBound)) << probe->stderr_text();
 
-  // Remote discovery is asynchronous: poll snapshots until the probe's reader shows up.
+  // Remote discovery is asynchronous, and a snapshot is not atomic: it reads the participants
+  // before the endpoints, so one snapshot can hold the probe's reader but not yet its participant.
+  // Poll until one snapshot holds both (CI once caught the reader alone).
+  const auto holds_the_probe = [](const dds::DiscoverySnapshot& s) {
+    bool reader = false;
+    for (const auto& t : s.topics()) {
+      if (t.topic_name == "rt/hubrt_test/remote_topic" && t.readers == 1) reader = true;
+    }
+    bool named = false;
+    for (const auto& p : s.participants) {
+      if (p.name == "hubrt_dds_env_probe") named = true;
+    }
+    return reader && named;
+  };
   const auto deadline = std::chrono::steady_clock::now() + kBound;
   std::optional<dds::DiscoverySnapshot> seen;
   while (!seen && std::chrono::steady_clock::now() < deadline) {
     auto snapshot = dds::discover(*participant);
     ASSERT_TRUE(snapshot) << snapshot.error().message;
-    for (const auto& t : snapshot->topics()) {
-      if (t.topic_name == "rt/hubrt_test/remote_topic" && t.readers == 1) seen = std::move(*snapshot);
+    if (holds_the_probe(*snapshot)) {
+      seen = std::move(*snapshot);
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  ASSERT_TRUE(seen) << "the probe's reader was never discovered";
+  ASSERT_TRUE(seen) << "the probe's reader and its named participant were never discovered together";
   for (const auto& t : seen->topics()) {
     if (t.topic_name != "rt/hubrt_test/remote_topic") continue;
     EXPECT_EQ(t.type_name, "hubrt_test::msg::dds_::Counter_");

@@ -53,6 +53,8 @@ struct DiscoverySnapshot {
 
 // Reads every participant, writer and reader currently alive that `participant` has discovered
 // (remote discovery takes a moment after start-up: poll with a deadline if you expect someone).
+// Not atomic: participants are read before endpoints, so a snapshot can hold a just-discovered
+// endpoint whose participant is not in `participants` yet; the next snapshot has both.
 // Creates and deletes its builtin-topic readers on each call; not for the cycle.
 // Errors: Cyclone's refusal as "read discovery topic DCPS...: DDS_RETCODE_...".
 // Thread-safety: safe to call from any thread.
