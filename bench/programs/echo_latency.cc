@@ -42,6 +42,7 @@
 
 #include "bench_common.h"
 #include "echo_peer.h"
+#include "echo_setup.h"
 #include "median.h"
 #include "raw_dds.h"
 
@@ -207,20 +208,11 @@ struct Options {
 int run(const Options& o) {
   auto domain = join_private_domain();
   if (!domain) return fmt::print(stderr, "{}\n", domain.error().message), 1;
-  auto pong = start_raw_peer({"pong"});
-  if (!pong) return fmt::print(stderr, "{}\n", pong.error().message), 1;
-  auto hub = start_hubd({"--hub", "dock_ecu", "--rate", fmt::format("{}", o.hub_rate)});
-  if (!hub) return fmt::print(stderr, "{}\n", hub.error().message), 1;
-  auto participant = raw_participant(domain->domain_id());
-  if (!participant) return fmt::print(stderr, "{}\n", participant.error().message), 1;
-  auto raw_peer = open_peer(*participant, "raw ping-pong", "rt/bench/ping", "rt/bench/pong");
-  if (!raw_peer) return fmt::print(stderr, "{}\n", raw_peer.error().message), 1;
-  auto hub_peer = open_peer(*participant, "hub", "rt/dock/command", "rt/dock_ecu/dock/state");
-  if (!hub_peer) return fmt::print(stderr, "{}\n{}\n", hub_peer.error().message, hub->stderr_text()), 1;
-
+  auto sides =
+      open_echo_sides(domain->domain_id(), {"--hub", "dock_ecu", "--rate", fmt::format("{}", o.hub_rate)});
+  if (!sides) return fmt::print(stderr, "{}\n", sides.error().message), 1;
   const std::size_t burst = runtime::kDefaultImmediateStateBurst;
-  // The bucket refills `burst` tokens in burst x interval; 2 ms more for the hub's wake-up.
-  const double refill_s = to_seconds(burst * runtime::kDefaultImmediateStateInterval) + 0.002;
+  const double refill_s = immediate_state_refill_s();
   std::size_t raw_lost = 0;
   std::size_t hub_lost = 0;
   // The same CPU for both answering processes, every thread of each; the planner on the others.
@@ -231,14 +223,14 @@ int run(const Options& o) {
     const cpu_set_t planner = cpu_set_of(0, cpus - 2);
     pinning["peers_cpu"] = cpus - 1;
     pinning["planner_cpus"] = cpus == 2 ? std::string("0") : fmt::format("0-{}", cpus - 2);
-    pinning["raw_threads"] = pin_process(pong->pid(), peers);
-    pinning["hub_threads"] = pin_process(hub->pid(), peers);
+    pinning["raw_threads"] = pin_process(sides->pong.pid(), peers);
+    pinning["hub_threads"] = pin_process(sides->hub.pid(), peers);
     pinning["planner_threads"] = pin_process(getpid(), planner);
   } else {
     pinning["peers_cpu"] = nullptr;
   }
-  run_block(*raw_peer, 50, false, refill_s);  // warm-up: discovery settles, caches fill
-  run_block(*hub_peer, 50, false, refill_s);
+  run_block(sides->raw_peer, 50, false, refill_s);  // warm-up: discovery settles, caches fill
+  run_block(sides->hub_peer, 50, false, refill_s);
   const std::size_t rounds = std::max<std::size_t>(o.rounds, 1);
   Regime back_to_back_regime;
   Regime sparse_regime;
@@ -246,8 +238,8 @@ int run(const Options& o) {
       "echo latency, back to back: {} round trips per side in bursts of {} (hub at {} Hz), {} rounds",
       o.back_to_back, burst, o.hub_rate, rounds));
   for (std::size_t r = 0; r < rounds; ++r) {
-    Side raw(&*raw_peer);
-    Side hub_side(&*hub_peer);
+    Side raw(&sides->raw_peer);
+    Side hub_side(&sides->hub_peer);
     run_back_to_back(raw, hub_side, std::max<std::size_t>(o.back_to_back / rounds, 1), burst, refill_s);
     back_to_back_regime.add_round(raw.back_to_back_ms, hub_side.back_to_back_ms);
     back_to_back_regime.add_heartbeats(hub_side);
@@ -258,8 +250,8 @@ int run(const Options& o) {
   progress(fmt::format("echo latency, sparse: {} commands per side, 20-120 ms apart, {} rounds", o.sparse,
                        rounds));
   for (std::size_t r = 0; r < rounds; ++r) {
-    Side raw(&*raw_peer);
-    Side hub_side(&*hub_peer);
+    Side raw(&sides->raw_peer);
+    Side hub_side(&sides->hub_peer);
     run_sparse(raw, hub_side, std::max<std::size_t>(o.sparse / rounds, 1), static_cast<unsigned>(16 + r));
     sparse_regime.add_round(raw.sparse_ms, hub_side.sparse_ms);
     sparse_regime.add_heartbeats(hub_side);
@@ -267,9 +259,9 @@ int run(const Options& o) {
     hub_lost += hub_side.lost;
   }
   const auto sparse = sparse_regime.json();
-  dds_delete(*participant);
-  stop(*hub);
-  stop(*pong);
+  dds_delete(sides->participant);
+  stop(sides->hub);
+  stop(sides->pong);
 
   nlohmann::ordered_json result;
   result["payload"] = "DockCommand (3 strings) out, DockState (header, name, echo, 4 slots) back";

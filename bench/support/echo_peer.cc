@@ -27,7 +27,7 @@ void drain(const Peer& peer) {
 
 }  // namespace
 
-double round_trip(const Peer& peer, const char* action, bool* other_state_between) {
+double round_trip(const Peer& peer, const char* action, bool* other_state_between, double* sent_at) {
   if (other_state_between != nullptr) *other_state_between = false;
   drain(peer);
   hub_msgs_msg_dds__DockCommand_ command{};
@@ -35,6 +35,7 @@ double round_trip(const Peer& peer, const char* action, bool* other_state_betwee
   hubrt::msgs::typed::assign(command.target_name, "dock");
   hubrt::msgs::typed::assign(command.action, action);
   const double sent = mono_now();
+  if (sent_at != nullptr) *sent_at = sent;
   if (dds_write(peer.writer, &command) < 0) return -1;
   for (;;) {
     dds_attach_t fired = 0;

@@ -25,7 +25,9 @@ struct Peer {
 // One command out, until the State echoing its action is back: seconds, or -1 if none within a
 // second. `other_state_between`, when given, says whether another State (a hub's heartbeat, still
 // echoing the command before) arrived in between: the hub was publishing it when the command came.
-double round_trip(const Peer& peer, const char* action, bool* other_state_between = nullptr);
+// `sent_at`, when given, gets the moment the command was written (mono_now(), CLOCK_MONOTONIC).
+double round_trip(const Peer& peer, const char* action, bool* other_state_between = nullptr,
+                  double* sent_at = nullptr);
 
 // Writer on `command_topic`, reader on `state_topic` (DDS names), waiting up to 20 s for a reader
 // of the commands. Errors: Cyclone's refusal, or nobody reading (kTimeout).
