@@ -225,6 +225,36 @@ TEST_F(StationSecurity, HubIdentityCannotPublishAnotherHubsState) {
       << run->output;
 }
 
+// A plant with one domain per station (docs/plant.md, "Security"): one CA for the plant, each
+// station's identities granted their own station's domain only (`hubctl security add --domains`).
+// An identity granted another station's domain is refused when it joins this one (exit 2, its
+// participant denied by Cyclone before it publishes anything); granted this one, it runs.
+TEST_F(StationSecurity, AnIdentityGrantedAnotherStationsDomainCannotJoinThisOne) {
+  const std::uint32_t here = domain_->domain_id();
+  const std::uint32_t elsewhere = here == 230 ? 229 : here + 1;  // 230: the last a document can name
+  make({"security", "add", station_, "dock_elsewhere", "--role", "hub", "--hub", "dock_ecu", "--sim",
+        "--domains", std::to_string(elsewhere)});
+  const auto refused = run_hubd(
+      *domain_,
+      {"--board", "host-sim", "--hub", "dock_ecu", "--security", station_, "--identity", "dock_elsewhere"},
+      kHubctlPatience);
+  ASSERT_TRUE(refused) << refused.error().message;
+  EXPECT_TRUE(refused->status.exited_with(2)) << refused->status.describe() << "\n" << refused->output;
+  // Cyclone's access control: no grant of the identity names this domain.
+  EXPECT_NE(
+      refused->output.find("It is not allowed to create participant: participant denied by default rule"),
+      std::string::npos)
+      << refused->output;
+  EXPECT_NE(refused->output.find("DDS Security identity 'dock_elsewhere' refused by Cyclone"),
+            std::string::npos)
+      << refused->output;
+
+  make({"security", "add", station_, "dock_here", "--role", "hub", "--hub", "dock_ecu", "--sim", "--domains",
+        std::to_string(here)});
+  auto hub = start_hub("dock_ecu", "dock_here");
+  ASSERT_TRUE(hub) << hub.error().message;
+}
+
 // Issue 34 point 5: a hub identity made without --sim on a simulation board (docs/deploy.md's
 // example before the fix) is refused with exit 2 naming rt/sim/input, and the message says --sim.
 TEST_F(StationSecurity, HubIdentityWithoutSimTopicsOnASimulationBoardIsToldToAddSim) {

@@ -9,6 +9,7 @@
 #include "hubrt/security/pki.h"
 
 #include "commands.h"
+#include "domain_set.h"
 #include "role_permissions.h"
 #include "session.h"
 
@@ -26,6 +27,7 @@ struct SecurityOptions {
   std::string role;
   std::vector<std::string> hubs;
   bool simulation = false;
+  std::string domains;  // --domains, e.g. "13" or "10-41"; empty: every domain
   ValidityOptions ca_validity{{}, 3650};
   ValidityOptions identity_validity{{}, 365};
 };
@@ -71,12 +73,22 @@ int run_add(const SecurityOptions& options) {
   if (!dates) return report(std::move(dates).error(), "");
   auto topics = role_permissions(options.role, options.hubs, options.simulation);
   if (!topics) return report(std::move(topics).error(), "");
+  std::vector<std::uint32_t> domains;
+  if (!options.domains.empty()) {
+    auto parsed = parse_domain_set(options.domains);
+    if (!parsed) return report(make_error(parsed.error().code, "--domains: " + parsed.error().message), "");
+    domains = std::move(*parsed);
+  }
   return report(
-      security::add_identity(options.dir, options.identity, *dates, topics->publish, topics->subscribe),
-      fmt::format("identity '{}' ({}) issued in {}: publishes {}; subscribes {}", options.identity,
-                  options.role, options.dir,
+      security::add_identity(options.dir, options.identity, *dates, topics->publish, topics->subscribe,
+                             domains),
+      fmt::format("identity '{}' ({}) issued in {}: publishes {}; subscribes {}; in domains {}",
+                  options.identity, options.role, options.dir,
                   topics->publish.empty() ? "nothing" : fmt::format("{}", fmt::join(topics->publish, " ")),
-                  fmt::join(topics->subscribe, " ")));
+                  fmt::join(topics->subscribe, " "),
+                  domains.empty()
+                      ? fmt::format("{}-{} (all)", security::kFirstDomainId, security::kLastDomainId)
+                      : format_domain_set(domains)));
 }
 
 void add_validity_options(CLI::App& app, ValidityOptions& options) {
@@ -110,6 +122,9 @@ void add_security_command(CLI::App& app, int& exit_code) {
   add->add_option("--hub", options->hubs,
                   "Hub file or type whose topics the identity publishes and reads (--role hub; repeatable)");
   add->add_flag("--sim", options->simulation, "Also the simulated station's /sim topics (planner, hub)");
+  add->add_option("--domains", options->domains,
+                  "DDS domains it may join: an id, a range 10-41 or a list 3,5,7-9 (default: all; a plant's "
+                  "station: its own, docs/plant.md)");
   add_validity_options(*add, options->identity_validity);
   add->callback([options, &exit_code] { exit_code = run_add(*options); });
 }

@@ -7,9 +7,26 @@
 namespace hubrt::security {
 namespace {
 
-std::string domains_xml() {
-  return fmt::format("<domains><id_range><min>{}</min><max>{}</max></id_range></domains>", kFirstDomainId,
-                     kLastDomainId);
+std::string id_range_xml(std::uint32_t first, std::uint32_t last) {
+  return first == last ? fmt::format("<id>{}</id>", first)
+                       : fmt::format("<id_range><min>{}</min><max>{}</max></id_range>", first, last);
+}
+
+// Every covered domain, or `ids` (ascending, each once) with runs of consecutive ids as ranges.
+std::string domains_xml(const std::vector<std::uint32_t>& ids = {}) {
+  if (ids.empty())
+    return "<domains>" +
+           id_range_xml(static_cast<std::uint32_t>(kFirstDomainId),
+                        static_cast<std::uint32_t>(kLastDomainId)) +
+           "</domains>";
+  std::string xml = "<domains>";
+  for (std::size_t i = 0; i < ids.size();) {
+    std::size_t j = i;
+    while (j + 1 < ids.size() && ids[j + 1] == ids[j] + 1) ++j;
+    xml += id_range_xml(ids[i], ids[j]);
+    i = j + 1;
+  }
+  return xml + "</domains>";
 }
 
 std::string topic_rule(const std::string& expression) {
@@ -115,8 +132,8 @@ std::string permissions_xml(const Grant& grant) {
       "  </permissions>\n"
       "</dds>\n",
       xml_escape(grant.name), xml_escape(grant.subject), detail::iso8601_utc(grant.not_before_unix),
-      detail::iso8601_utc(grant.not_after_unix), domains_xml(), topics_xml("publish", grant.publish),
-      topics_xml("subscribe", grant.subscribe));
+      detail::iso8601_utc(grant.not_after_unix), domains_xml(grant.domains),
+      topics_xml("publish", grant.publish), topics_xml("subscribe", grant.subscribe));
 }
 
 }  // namespace hubrt::security

@@ -47,6 +47,24 @@ Expected<void> check_validity(const Validity& validity) {
   return {};
 }
 
+Expected<void> check_domains(const std::vector<std::uint32_t>& domains) {
+  for (std::size_t i = 0; i < domains.size(); ++i) {
+    if (domains[i] > static_cast<std::uint32_t>(kLastDomainId)) {
+      return make_error(
+          ErrorCode::kInvalidArgument,
+          fmt::format("domain {}: DDS Security covers domains {} to {} (Cyclone's access control "
+                      "refuses a document naming a higher one)",
+                      domains[i], kFirstDomainId, kLastDomainId));
+    }
+    if (i > 0 && domains[i] <= domains[i - 1]) {
+      return make_error(
+          ErrorCode::kInvalidArgument,
+          fmt::format("domains {} and {}: not ascending, or named twice", domains[i - 1], domains[i]));
+    }
+  }
+  return {};
+}
+
 bool add_extension(X509* cert, X509* issuer, int nid, const char* value) {
   X509V3_CTX ctx;
   X509V3_set_ctx(&ctx, issuer, cert, nullptr, nullptr, 0);
@@ -153,9 +171,11 @@ Expected<void> init_station(const std::string& dir, const Validity& validity) {
 
 Expected<void> add_identity(const std::string& dir, const std::string& identity, const Validity& validity,
                             const std::vector<std::string>& publish,
-                            const std::vector<std::string>& subscribe) {
+                            const std::vector<std::string>& subscribe,
+                            const std::vector<std::uint32_t>& domains) {
   if (auto ok = check_identity_name(identity); !ok) return ok;
   if (auto ok = check_validity(validity); !ok) return ok;
+  if (auto ok = check_domains(domains); !ok) return ok;
   const Credentials files = credentials_in(dir, identity);
   auto ca_cert = detail::read_cert(files.identity_ca, "identity CA certificate");
   if (!ca_cert) {
@@ -175,6 +195,7 @@ Expected<void> add_identity(const std::string& dir, const std::string& identity,
   grant.not_after_unix = validity.not_after_unix;
   grant.publish = publish;
   grant.subscribe = subscribe;
+  grant.domains = domains;
   return write_signed(dir, fmt::format("{}/{}.permissions.xml", dir, identity), files.permissions,
                       permissions_xml(grant));
 }

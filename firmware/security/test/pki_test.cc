@@ -90,6 +90,42 @@ TEST(StationPki, ObserverPermissionsHaveNoPublishRule) {
   EXPECT_NE(xml.find("<not_before>2026-01-01T00:00:00</not_before>"), std::string::npos);
 }
 
+// A plant with one domain per station (docs/plant.md): a station's identity may join its own
+// station's domain only; the plant's tools one identity for all of them.
+TEST(StationPki, AnIdentityMayJoinTheDomainsItWasGrantedAndNoOthers) {
+  TempFolder folder;
+  ASSERT_TRUE(init_station(folder.path(), year_around_now()));
+  const auto grant_of = [&](const std::string& identity) {
+    const Credentials files = credentials_in(folder.path(), identity);
+    auto permissions = verify_document(files.permissions, "permissions", files.permissions_ca, kNow);
+    EXPECT_TRUE(permissions) << permissions.error().message;
+    return permissions ? *permissions : std::string();
+  };
+  ASSERT_TRUE(add_identity(folder.path(), "s3_dock_ecu", year_around_now(), {}, {"rt/*"}, {13}));
+  EXPECT_NE(grant_of("s3_dock_ecu").find("<domains><id>13</id></domains>"), std::string::npos);
+  ASSERT_TRUE(add_identity(folder.path(), "plant_tools", year_around_now(), {}, {"rt/*"}, {10, 11, 12, 20}));
+  EXPECT_NE(grant_of("plant_tools")
+                .find("<domains><id_range><min>10</min><max>12</max></id_range><id>20</id></domains>"),
+            std::string::npos);
+  // Without domains: every domain the governance covers, as before.
+  ASSERT_TRUE(add_identity(folder.path(), "planner", year_around_now(), {}, {"rt/*"}));
+  EXPECT_NE(grant_of("planner").find("<domains><id_range><min>0</min><max>230</max></id_range></domains>"),
+            std::string::npos);
+}
+
+TEST(StationPki, RefusesADomainSecurityCannotCoverOrOutOfOrder) {
+  TempFolder folder;
+  ASSERT_TRUE(init_station(folder.path(), year_around_now()));
+  auto above = add_identity(folder.path(), "planner", year_around_now(), {}, {"rt/*"}, {10, 231});
+  ASSERT_FALSE(above);
+  EXPECT_EQ(above.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(above.error().message.find("domain 231: DDS Security covers domains 0 to 230"), std::string::npos)
+      << above.error().message;
+  EXPECT_FALSE(add_identity(folder.path(), "planner", year_around_now(), {}, {"rt/*"}, {12, 11}));
+  EXPECT_FALSE(add_identity(folder.path(), "planner", year_around_now(), {}, {"rt/*"}, {12, 12}));
+  EXPECT_FALSE(std::ifstream(credentials_in(folder.path(), "planner").permissions)) << "nothing written";
+}
+
 TEST(StationPki, AddWithoutInitSaysToInit) {
   TempFolder folder;
   auto added = add_identity(folder.path(), "planner", year_around_now(), {}, {"rt/*"});

@@ -34,6 +34,10 @@ struct Grant {
   std::int64_t not_after_unix = 0;
   std::vector<std::string> publish;
   std::vector<std::string> subscribe;
+  // The DDS domains it may join, ascending, each once, none above kLastDomainId; empty: every
+  // domain the documents cover (kFirstDomainId to kLastDomainId). A plant with one domain per
+  // station (docs/plant.md) keeps each station's identities to their station's domain.
+  std::vector<std::uint32_t> domains;
 };
 
 std::string permissions_xml(const Grant& grant);

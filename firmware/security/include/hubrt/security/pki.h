@@ -29,13 +29,15 @@ Expected<void> init_station(const std::string& dir, const Validity& validity);
 
 // Issues `identity`'s certificate (subject "CN=<identity>,O=hubrt station", signed by the
 // identity CA) and key (0600), and its permissions document for `publish`/`subscribe` (DDS topic
-// expressions) signed by the permissions CA; replaces an earlier identity of the same name (that is
-// how a certificate is renewed).
-// Errors: kInvalidArgument for a bad name or validity; kNotFound when `dir` has no CA (run init);
-// kIo / kInternal as init_station.
+// expressions) in the DDS domains `domains` (ascending, each once; empty: every domain, Grant)
+// signed by the permissions CA; replaces an earlier identity of the same name (that is how a
+// certificate is renewed).
+// Errors: kInvalidArgument for a bad name or validity, or a domain above kLastDomainId or out of
+// order; kNotFound when `dir` has no CA (run init); kIo / kInternal as init_station.
 Expected<void> add_identity(const std::string& dir, const std::string& identity, const Validity& validity,
                             const std::vector<std::string>& publish,
-                            const std::vector<std::string>& subscribe);
+                            const std::vector<std::string>& subscribe,
+                            const std::vector<std::uint32_t>& domains = {});
 
 // The certificate subject add_identity gives `identity`.
 std::string identity_subject(const std::string& identity);
