@@ -18,9 +18,10 @@ window, the CPU and RSS of the last station's Dock ECU (and the median over ever
 host's load; then two probes run as one more station beside the plant (in the shared domain, or in
 a domain of their own): hubrt_bench_heartbeat (a hub's heartbeat jitter at a subscriber, 100 Hz,
 beside a bare writer) and hubrt_bench_echo_latency (command -> echo, beside the raw pong). Planners
-that stopped (a failed step) are counted: a station that failed its use-case.
+that stopped (a failed step) are counted: a station that failed its use-case. With --conformance, in
+the domains design, last: `hubctl conformance` of every hub of every station, the plant running.
     bench/plant.py [--build-dir build/host-release] [--stations 1,4,16,32] [--designs domains,shared]
-                   [--window 20] [--out FILE] [--no-probes] [--append]
+                   [--window 20] [--out FILE] [--no-probes] [--append] [--conformance]
 Prints one progress line per step and a Markdown table at the end; the JSON goes to --out
 (default BUILD/bench-results/plant.json).
 """
@@ -46,6 +47,7 @@ HUBS = [("tool_ecu", "host-sim", "hubs/station/hub-files/tool_ecu.yaml"),
         ("mir_com", "host-sim-mir-com", "hubs/mir_com/mir_com.yaml"),
         ("operator_hub", "host-sim-operator-hub", "hubs/station/hub-files/operator_hub.yaml")]
 PROCESSES_PER_STATION = len(HUBS) + 2  # hubsim, the planner
+CONFORMANCE_TIMEOUT_S = 300  # one station's five hubs in parallel, on a host the plant keeps busy
 
 
 def progress(line):
@@ -200,7 +202,46 @@ def probe(build, program, args, design, domain, xml, scratch):
         return json.load(f)
 
 
-def run_plant(build, n, design, window, probes):
+def conform(build, stations):
+    """`hubctl conformance` of every hub of every station, the plant still running: each station's
+    planner is stopped first (the suite commands the hubs itself, and two planners commanding one
+    hub measure neither), its hubs and hubsim keep running (the station's domain and Cyclone
+    configuration come with its environment), the other stations keep playing until
+    their turn. One station after the other, its five hubs in parallel (--parallel)."""
+    names = [name for name, _, _ in HUBS]
+    passed, failures, t0 = 0, [], time.monotonic()
+    for s in stations:
+        progress(f"conformance: station {s.k + 1} of {len(stations)} (domain {s.domain})")
+        if s.planner.poll() is None:
+            s.planner.send_signal(signal.SIGINT)
+            try:
+                s.planner.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                s.planner.kill()
+                s.planner.wait()
+        argv = [f"{build}/firmware/hubctl/hubctl", "conformance", "--parallel", "--domain", str(s.domain)] + [
+                arg for name in names for arg in ("--hub", name)]
+        try:
+            run = subprocess.run(argv, env=s.env, capture_output=True, text=True, timeout=CONFORMANCE_TIMEOUT_S)
+            ok, said = run.returncode == 0, run.stdout + run.stderr
+        except subprocess.TimeoutExpired:
+            ok, said = False, f"did not finish in {CONFORMANCE_TIMEOUT_S} s"
+        if ok:
+            passed += 1
+        else:
+            # The checks that failed, each under the topic it was measured on, and the whole report.
+            failing, topic = [], ""
+            for line in said.splitlines():
+                if line.startswith("/") or line.startswith("rt/"):
+                    topic = line.strip()
+                elif "FAIL" in line:
+                    failing.append(f"{topic}: {line.strip()}")
+            failures.append({"station": s.k, "domain": s.domain, "failing": failing, "output": said})
+    return {"stations": len(stations), "hubs": len(stations) * len(names), "stations_passed": passed,
+            "failures": failures, "seconds": round(time.monotonic() - t0, 1)}
+
+
+def run_plant(build, n, design, window, probes, conformance):
     xml = cyclone_xml(n * PROCESSES_PER_STATION + 8 if design == "shared" else 0)
     result = {"stations": n, "design": design, "processes": n * PROCESSES_PER_STATION}
     with tempfile.TemporaryDirectory(prefix="hubrt-plant-") as scratch:
@@ -268,6 +309,8 @@ def run_plant(build, n, design, window, probes):
             if failed:
                 result["first_failure"] = "".join(failed[0].planner_lines[-6:]) if failed[0].planner_lines else \
                     "(quiet planner: see its station's logs)"
+            if conformance and design == "domains":
+                result["conformance"] = conform(build, stations)
         finally:
             stop_all(stations)
     return result
@@ -280,8 +323,8 @@ def fmt(value, spec=".2f"):
 def table(results):
     rows = ["| design | N | processes | last station found its hubs | Dock ECU CPU (last / median) | "
             "Dock ECU RSS (last / median) | host busy, load | heartbeat p99 hub / raw writer | "
-            "echo p99 sparse hub / raw pong | stations failed |",
-            "|---|---|---|---|---|---|---|---|---|---|"]
+            "echo p99 sparse hub / raw pong | stations failed | stations whose hubs all pass conformance |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in results:
         hb, echo = r.get("heartbeat"), r.get("echo", {}).get("sparse")
         missing = "not run" if not r.get("probed") else f"did not finish ({PROBE_TIMEOUT_S} s bound)"
@@ -297,7 +340,9 @@ def table(results):
                if hb else f"{hb_missing} | ")
             + (f"{fmt(echo['hub_p99_ms'], '.3f')} / {fmt(echo['raw_p99_ms'], '.3f')} ms ({fmt(echo['ratio_p99'])}x) | "
                if echo else f"{missing} | ")
-            + f"{r['stations_failed']} |")
+            + f"{r['stations_failed']} | "
+            + (f"{r['conformance']['stations_passed']} of {r['conformance']['stations']} "
+               f"({r['conformance']['seconds']:.0f} s) |" if r.get("conformance") else "not run |"))
     return "\n".join(rows)
 
 
@@ -309,6 +354,8 @@ def main():
     parser.add_argument("--window", type=float, default=20.0)
     parser.add_argument("--out")
     parser.add_argument("--no-probes", action="store_true")
+    parser.add_argument("--conformance", action="store_true",
+                        help="after each domains-design plant's window: hubctl conformance of every hub of every station")
     parser.add_argument("--append", action="store_true",
                         help="keep the results already in --out and run only the N and designs not there yet")
     args = parser.parse_args()
@@ -333,7 +380,7 @@ def main():
         for design in designs:
             if any(r["stations"] == n and r["design"] == design for r in results):
                 continue
-            results.append(run_plant(build, n, design, args.window, not args.no_probes))
+            results.append(run_plant(build, n, design, args.window, not args.no_probes, args.conformance))
             with open(out, "w") as f:
                 json.dump({"host_cpus": os.cpu_count(), "results": results}, f, indent=1)
     print(table(results))
