@@ -20,8 +20,10 @@ a domain of their own): hubrt_bench_heartbeat (a hub's heartbeat jitter at a sub
 beside a bare writer) and hubrt_bench_echo_latency (command -> echo, beside the raw pong). Planners
 that stopped (a failed step) are counted: a station that failed its use-case. With --conformance, in
 the domains design, last: `hubctl conformance` of every hub of every station, the plant running.
+With --tails, after the window: hubrt_bench_tails (docs/tails.md: ten interleaved rounds, medians
+of the rounds' p95 and p99 ratios) as one more station beside the plant.
     bench/plant.py [--build-dir build/host-release] [--stations 1,4,16,32] [--designs domains,shared]
-                   [--window 20] [--out FILE] [--no-probes] [--append] [--conformance]
+                   [--window 20] [--out FILE] [--no-probes] [--append] [--conformance] [--tails]
 Prints one progress line per step and a Markdown table at the end; the JSON goes to --out
 (default BUILD/bench-results/plant.json).
 """
@@ -172,11 +174,13 @@ def host_times():
 
 
 PROBE_TIMEOUT_S = 150  # on a host the plant saturates a probe may not finish: recorded as such
+TAILS_TIMEOUT_S = 1200  # hubrt_bench_tails: about 7 minutes on a quiet host
 
 
-def probe(build, program, args, design, domain, xml, scratch):
+def probe(build, program, args, design, domain, xml, scratch, timeout_s=None):
     """A bench program as one more station: in the plant's shared domain, or a private one. None when
-    it did not finish within PROBE_TIMEOUT_S or failed."""
+    it did not finish within timeout_s (PROBE_TIMEOUT_S by default) or failed."""
+    timeout_s = timeout_s or PROBE_TIMEOUT_S
     env = dict(os.environ, HUBRT_CONFIG_DIR=REPO, HUBRT_BLACKBOX_DIR=os.path.join(scratch, "blackbox"))
     if design == "shared":
         env.update(HUBRT_BENCH_DOMAIN=str(domain), HUBRT_BENCH_CYCLONEDDS_URI=xml)
@@ -185,7 +189,7 @@ def probe(build, program, args, design, domain, xml, scratch):
     bench = subprocess.Popen([f"{build}/bench/{program}", "--out", out] + args, env=env,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
-        status = bench.wait(timeout=PROBE_TIMEOUT_S)
+        status = bench.wait(timeout=timeout_s)
     except subprocess.TimeoutExpired:
         os.killpg(bench.pid, signal.SIGTERM)
         try:
@@ -193,7 +197,7 @@ def probe(build, program, args, design, domain, xml, scratch):
         except subprocess.TimeoutExpired:
             os.killpg(bench.pid, signal.SIGKILL)
             bench.wait()
-        progress(f"{program}: not done in {PROBE_TIMEOUT_S} s; stopped")
+        progress(f"{program}: not done in {timeout_s} s; stopped")
         return None
     if status != 0:
         progress(f"{program}: exit status {status}")
@@ -241,7 +245,7 @@ def conform(build, stations):
             "failures": failures, "seconds": round(time.monotonic() - t0, 1)}
 
 
-def run_plant(build, n, design, window, probes, conformance):
+def run_plant(build, n, design, window, probes, conformance, tails=False):
     xml = cyclone_xml(n * PROCESSES_PER_STATION + 8 if design == "shared" else 0)
     result = {"stations": n, "design": design, "processes": n * PROCESSES_PER_STATION}
     with tempfile.TemporaryDirectory(prefix="hubrt-plant-") as scratch:
@@ -304,6 +308,14 @@ def run_plant(build, n, design, window, probes, conformance):
                                                "raw_p99_ms": echo[regime]["raw_ms"]["p99"],
                                                "ratio_p99": echo[regime]["ratio_p99"]}
                                       for regime in ("sparse", "back_to_back")}
+            if tails:
+                progress(f"N={n} {design}: tails probe (hubrt_bench_tails, 10 rounds)")
+                t = probe(build, "hubrt_bench_tails", [], design, BASE_DOMAIN, xml, scratch, TAILS_TIMEOUT_S)
+                if t:
+                    result["tails"] = {name: {k: v[k] for k in ("median_p95", "spread_p95", "median_p99", "spread_p99",
+                                                                "judged_rounds")}
+                                       for name, v in t["verdicts"].items()}
+                    result["tails_per_round"] = t["per_round"]
             failed = [s for s in stations if s.failed()]
             result["stations_failed"] = len(failed)
             if failed:
@@ -354,6 +366,8 @@ def main():
     parser.add_argument("--window", type=float, default=20.0)
     parser.add_argument("--out")
     parser.add_argument("--no-probes", action="store_true")
+    parser.add_argument("--tails", action="store_true",
+                        help="after the window: hubrt_bench_tails as one more station beside the plant (docs/tails.md)")
     parser.add_argument("--conformance", action="store_true",
                         help="after each domains-design plant's window: hubctl conformance of every hub of every station")
     parser.add_argument("--append", action="store_true",
@@ -361,7 +375,7 @@ def main():
     args = parser.parse_args()
     build = os.path.abspath(args.build_dir)
     for tool in ("firmware/hubd/hubd", "firmware/hubctl/hubctl", "firmware/sim/station/hubsim",
-                 "bench/hubrt_bench_heartbeat", "bench/hubrt_bench_echo_latency"):
+                 "bench/hubrt_bench_heartbeat", "bench/hubrt_bench_echo_latency", "bench/hubrt_bench_tails"):
         if not os.access(os.path.join(build, tool), os.X_OK):
             parser.error(f"{build}/{tool} is missing: cmake --build {args.build_dir} --target hubd hubctl hubsim "
                          "bench-programs")
@@ -380,7 +394,7 @@ def main():
         for design in designs:
             if any(r["stations"] == n and r["design"] == design for r in results):
                 continue
-            results.append(run_plant(build, n, design, args.window, not args.no_probes, args.conformance))
+            results.append(run_plant(build, n, design, args.window, not args.no_probes, args.conformance, args.tails))
             with open(out, "w") as f:
                 json.dump({"host_cpus": os.cpu_count(), "results": results}, f, indent=1)
     print(table(results))
