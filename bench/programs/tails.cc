@@ -47,7 +47,7 @@ void own_round_trip(Peer& peer, std::size_t& sent, Samples* into) {
   if (rtt < 0) {
     if (into != nullptr) ++into->lost;
   } else if (into != nullptr) {
-    into->add(at, rtt);
+    into->add({static_cast<std::int64_t>(at * 1e9), static_cast<std::int64_t>((at + rtt) * 1e9)});
   }
 }
 
@@ -106,9 +106,7 @@ Expected<void> run_external(PlannerRound& out, const Options& o, std::size_t bur
     int between = 0;
     lines >> side >> sent >> echo >> between;
     if (!lines) break;
-    Samples& s = out.s[regime == "sparse" ? 0 : 1][side == "hub" ? 1 : 0];
-    s.ms.push_back(static_cast<double>(echo - sent) * 1e-6);
-    s.timed.push_back({sent, echo});
+    out.s[regime == "sparse" ? 0 : 1][side == "hub" ? 1 : 0].add({sent, echo});
   }
   if (!done) return make_error(ErrorCode::kInternal, "c_planner: its output ended before 'done'");
   return {};

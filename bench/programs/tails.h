@@ -26,10 +26,9 @@ struct Samples {
   std::vector<double> ms;
   std::vector<TimedRoundTrip> timed;
   std::size_t lost = 0;
-  void add(double sent_s, double rtt_s) {
-    ms.push_back(rtt_s * 1e3);
-    timed.push_back(
-        {static_cast<std::int64_t>(sent_s * 1e9), static_cast<std::int64_t>((sent_s + rtt_s) * 1e9)});
+  void add(TimedRoundTrip t) {
+    ms.push_back(static_cast<double>(t.echo - t.sent) * 1e-6);
+    timed.push_back(t);
   }
 };
 

@@ -1,5 +1,7 @@
 // The tails bench's verdicts: each figure's rounds judged (tail_rounds.h), the host's state per
 // round, and whose each slow hub round trip was (stage_attribution.h); tables on stdout, JSON out.
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "bench_common.h"
@@ -53,7 +55,7 @@ struct Blame {
 
   void add(const Samples& raw, const Samples& hub, const std::vector<TracedStep>& trace,
            const Attribution& typical) {
-    const double threshold = nearest_rank(raw.ms, 0.95);
+    const double threshold = summary_of(raw.ms).p95;
     for (std::size_t i = 0; i < hub.ms.size(); ++i) {
       if (hub.ms[i] <= threshold) continue;
       ++slow;
@@ -76,8 +78,10 @@ struct Blame {
   }
 };
 
-// The typical (median) parts of every traced hub round trip of the run, both planners.
-Attribution typical_round_trip(const std::vector<Round>& rounds, const std::vector<TracedStep>& trace) {
+// The typical (median) parts of every traced hub round trip of the run, both planners; `traced`
+// gets how many there were.
+Attribution typical_round_trip(const std::vector<Round>& rounds, const std::vector<TracedStep>& trace,
+                               std::size_t& traced) {
   std::vector<Attribution> all;
   for (const Round& r : rounds) {
     for (const PlannerRound* p : {&r.own, &r.external}) {
@@ -86,6 +90,8 @@ Attribution typical_round_trip(const std::vector<Round>& rounds, const std::vect
       }
     }
   }
+  traced = static_cast<std::size_t>(
+      std::count_if(all.begin(), all.end(), [](const Attribution& a) { return a.traced; }));
   return typical_of(all);
 }
 
@@ -116,12 +122,13 @@ int report(const std::vector<Round>& rounds, const std::vector<TracedStep>& trac
   std::vector<double> bare_p99;
   for (const Round& r : rounds) {
     jitter.push_back(round_tails(r.heartbeat.first_ms, r.heartbeat.second_ms));
-    bare_p99.push_back(nearest_rank(r.bare_ms, 0.99));
+    bare_p99.push_back(summary_of(r.bare_ms).p99);
   }
   figures.push_back({fmt::format("heartbeat jitter at a subscriber, {} Hz", o.heartbeat_rate),
                      judge_tails(jitter), 0.0, kJitterAimP99});
   const double usual_bare = median_of(bare_p99);
-  const Attribution typical = typical_round_trip(rounds, trace);
+  std::size_t traced = 0;
+  const Attribution typical = typical_round_trip(rounds, trace, traced);
 
   nlohmann::ordered_json per_round = nlohmann::ordered_json::array();
   fmt::print("| round | order | steal s | load | bare loop p99 ms |");
@@ -183,10 +190,11 @@ int report(const std::vector<Round>& rounds, const std::vector<TracedStep>& trac
     verdicts[f.name] = figure_json(f);
   }
   fmt::print(
-      "\nThe typical hub round trip (median of {} traced command steps' parts): {:.1f} us to the listener, "
-      "wake "
-      "{:.1f}, step {:.1f}, write {:.1f}, {:.1f} us from the write to the planner.\n",
-      trace.size(), us(typical.to_listener), us(typical.wake), us(typical.step), us(typical.write),
+      "\nThe typical hub round trip (the median of each part over the {} hub round trips the trace of {} "
+      "command steps covers): {:.1f} us to the listener, wake {:.1f}, step {:.1f}, write {:.1f}, {:.1f} us "
+      "from "
+      "the write to the planner.\n",
+      traced, trace.size(), us(typical.to_listener), us(typical.wake), us(typical.step), us(typical.write),
       us(typical.from_written));
   nlohmann::ordered_json result;
   result["rounds"] = rounds.size();
@@ -196,6 +204,7 @@ int report(const std::vector<Round>& rounds, const std::vector<TracedStep>& trac
   result["window_s"] = o.window_s;
   result["stall_factor"] = kBaselineStallFactor;
   result["traced_command_steps"] = trace.size();
+  result["traced_hub_round_trips"] = traced;
   result["typical_hub_round_trip_us"] = {{"to_listener", us(typical.to_listener)},
                                          {"wake", us(typical.wake)},
                                          {"step", us(typical.step)},

@@ -1,22 +1,16 @@
 #include "tail_rounds.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "median.h"
+#include "stats.h"
 
 namespace hubrt::bench {
 
-double nearest_rank(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
 RoundTails round_tails(const std::vector<double>& subject, const std::vector<double>& baseline) {
-  return {nearest_rank(subject, 0.95), nearest_rank(subject, 0.99), nearest_rank(baseline, 0.95),
-          nearest_rank(baseline, 0.99)};
+  const hubctl::Summary s = hubctl::summarize(subject);
+  const hubctl::Summary b = hubctl::summarize(baseline);
+  return {s.p95, s.p99, b.p95, b.p99};
 }
 
 TailVerdict judge_tails(const std::vector<RoundTails>& rounds, double stall_factor) {

@@ -12,9 +12,6 @@
 
 namespace hubrt::bench {
 
-// The nearest-rank percentile `q` (0 < q <= 1) of `values`; 0 when empty.
-double nearest_rank(std::vector<double> values, double q);
-
 // One round's tails of the subject and its baseline (any one unit).
 struct RoundTails {
   double subject_p95 = 0;
@@ -23,7 +20,7 @@ struct RoundTails {
   double baseline_p99 = 0;
 };
 
-// Its samples, as percentiles.
+// Its samples, as nearest-rank percentiles (hubctl::summarize); 0 for an empty side.
 RoundTails round_tails(const std::vector<double>& subject, const std::vector<double>& baseline);
 
 // A baseline p99 more than this many times the median of the rounds' baseline p99 is a stall.

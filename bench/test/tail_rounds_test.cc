@@ -6,21 +6,6 @@
 namespace hubrt::bench {
 namespace {
 
-TEST(TailRounds, NearestRankPicksTheSampleAtOrAboveTheShare) {
-  std::vector<double> hundred;
-  for (int i = 100; i >= 1; --i) hundred.push_back(i);  // unsorted on purpose
-  EXPECT_EQ(nearest_rank(hundred, 0.95), 95);
-  EXPECT_EQ(nearest_rank(hundred, 0.99), 99);
-  EXPECT_EQ(nearest_rank(hundred, 1.0), 100);
-  // 60 samples: p99 is the largest (rank ceil(59.4) = 60), p95 the 57th.
-  std::vector<double> sixty;
-  for (int i = 1; i <= 60; ++i) sixty.push_back(i);
-  EXPECT_EQ(nearest_rank(sixty, 0.99), 60);
-  EXPECT_EQ(nearest_rank(sixty, 0.95), 57);
-  EXPECT_EQ(nearest_rank({}, 0.99), 0);
-  EXPECT_EQ(nearest_rank({7}, 0.5), 7);
-}
-
 TEST(TailRounds, TheVerdictIsTheMedianOfTheRoundsRatiosWithTheirSpread) {
   // Baseline p95 1 and p99 2 in every round; the subject's ratios 1.0, 1.2, 1.1, 0.9, 1.3.
   std::vector<RoundTails> rounds;

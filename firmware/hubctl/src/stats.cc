@@ -24,6 +24,7 @@ Summary summarize(std::vector<double> values) {
   s.max = values.back();
   s.p50 = nearest_rank(values, 50);
   s.p90 = nearest_rank(values, 90);
+  s.p95 = nearest_rank(values, 95);
   s.p99 = nearest_rank(values, 99);
   s.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
   return s;
