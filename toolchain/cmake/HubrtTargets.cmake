@@ -121,12 +121,10 @@ function(_hubrt_library_pch name sources)
     file(WRITE ${_src} "// The host of the libraries' precompiled header (HUBRT_PCH).\n")
     add_library(hubrt_library_pch SHARED ${_src})
     target_compile_definitions(hubrt_library_pch PRIVATE ${_definitions})
-    target_precompile_headers(hubrt_library_pch PRIVATE
+    hubrt_target_pch(hubrt_library_pch
       <algorithm> <array> <atomic> <chrono> <cstdint> <functional> <map> <memory> <mutex> <optional> <span>
       <string> <string_view> <thread> <unordered_map> <variant> <vector>
-      <fmt/format.h> <spdlog/spdlog.h> ${HUBRT_FMT_VFORMAT_ONCE_HEADER})
-    target_link_libraries(hubrt_library_pch PRIVATE hubrt_fmt_vformat)
-    target_compile_options(hubrt_library_pch PRIVATE $<$<CXX_COMPILER_ID:Clang>:-Xclang -fno-pch-timestamp>)
+      <fmt/format.h> <spdlog/spdlog.h>)
     hubrt_target_defaults(hubrt_library_pch)
   endif()
   target_compile_definitions(${name} PRIVATE ${_definitions})
@@ -134,9 +132,9 @@ function(_hubrt_library_pch name sources)
   target_precompile_headers(${name} REUSE_FROM hubrt_library_pch)
 endfunction()
 
-# hubrt_target_pch(<target> <header>...): under HUBRT_PCH, a precompiled header of its own for a
-# target that cannot reuse the libraries' (a static library: not position-independent code), with
-# the third-party headers most of its files include and hubrt/fmt/vformat_once.h. hubctl's library
+# hubrt_target_pch(<target> <header>...): under HUBRT_PCH, a precompiled header of the target's own,
+# of the given headers and hubrt/fmt/vformat_once.h: the libraries' host (hubrt_library_pch), and a
+# target that cannot reuse that one (a static library: not position-independent code). hubctl's library
 # (56 files): 20 of them compiled 83.1 CPU-s without one, 65.0 with the standard library and fmt,
 # 65.7 with nlohmann-json, CLI11 and yaml-cpp too, which fewer than half include (2026-11-29).
 function(hubrt_target_pch target)
