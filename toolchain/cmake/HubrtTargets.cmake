@@ -14,6 +14,23 @@ if(HUBRT_SANITIZE)
   endif()
   add_compile_options(${_hubrt_san_flags})
   add_link_options(${_hubrt_san_flags})
+  if("address" IN_LIST _hubrt_sanitizers AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    # clang's default (=runtime) puts in every function with locals a fake-stack branch that only
+    # ASAN_OPTIONS=detect_stack_use_after_return=1 takes; nothing here sets it (clang 14's runtime
+    # default is off), so the code was compiled and never run. Test objects 1.00x, library
+    # objects 0.97x of the CPU without it (docs/ci.md, "Less instrumentation in the tests' own code").
+    add_compile_options(-fsanitize-address-use-after-return=never)
+  endif()
+  # The test programs' own sources (hubrt_add_test; not the fakes, simulators and support
+  # libraries they link, and nothing that ships) leave out the UBSan checks that were most of
+  # UBSan's cost there, at -O0 about a fifth of a test object's compile: null and alignment (a
+  # pointer or reference used; ASan reports a dereference of null or freed memory itself), vptr
+  # (the dynamic type at a downcast or member call) and function (an indirect call's type). The
+  # code under test keeps every check; so do the other UBSan checks (overflow, shift, bounds,
+  # enum, bool, ...) in the tests. docs/ci.md, "Less instrumentation in the tests' own code".
+  if("undefined" IN_LIST _hubrt_sanitizers AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    set(_hubrt_test_san_flags -fno-sanitize=null,alignment,vptr,function)
+  endif()
 endif()
 
 # HUBRT_BOARD_LTO (top-level CMakeLists.txt): IR in every object, no LTO at link except for a target
@@ -206,7 +223,8 @@ function(_hubrt_test_pch)
   target_precompile_headers(hubrt_test_pch PRIVATE
     <algorithm> <chrono> <functional> <map> <memory> <optional> <string> <string_view> <thread> <vector>
     <gtest/gtest.h> <gmock/gmock.h> <fmt/format.h> <spdlog/spdlog.h> ${HUBRT_FMT_VFORMAT_ONCE_HEADER})
-  target_compile_options(hubrt_test_pch PRIVATE $<$<CXX_COMPILER_ID:Clang>:-Xclang -fno-pch-timestamp>)
+  target_compile_options(hubrt_test_pch PRIVATE $<$<CXX_COMPILER_ID:Clang>:-Xclang -fno-pch-timestamp>
+                         ${_hubrt_test_san_flags})
   hubrt_target_defaults(hubrt_test_pch)
 endfunction()
 
@@ -251,6 +269,7 @@ function(hubrt_add_test name)
     set_property(GLOBAL APPEND PROPERTY HUBRT_THREADED_TEST_TARGETS ${name})
   endif()
   hubrt_target_defaults(${name})
+  target_compile_options(${name} PRIVATE ${_hubrt_test_san_flags})
   # Labels and timeout are applied by a small script included after the discovered tests:
   # gtest_discover_tests' PROPERTIES loses the separators of a list value in PRE_TEST mode.
   gtest_discover_tests(${name}
