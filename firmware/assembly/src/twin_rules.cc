@@ -73,7 +73,12 @@ StartupVerdict StartupCheck::update(const std::vector<dds::WatchedParticipant>& 
   }
   unnamed_hub_ = unnamed_hub;
   const bool over = now - begin_ >= window_;
-  if (claimed_) return over || now - claimed_at_ >= quiet_ ? StartupVerdict::kTwin : StartupVerdict::kWait;
+  if (claimed_) {
+    if (!over && now - claimed_at_ < quiet_) return StartupVerdict::kWait;
+    if (!decided_) decided_at_ = now;
+    decided_ = true;
+    return StartupVerdict::kTwin;
+  }
   if (over) return StartupVerdict::kAlone;
   if (!unnamed_hub && now - last_new_ >= quiet_) return StartupVerdict::kAlone;
   return StartupVerdict::kWait;

@@ -18,13 +18,6 @@ Time steady_now() {
 // discovered while the check sleeps counts from when it is seen, so a longer step only makes the
 // check later, never laxer; this step keeps that lateness (and so the verdict's) under 0.5 ms.
 constexpr Duration kStartupPollStep = std::chrono::microseconds(500);
-// A twin known by its identity alone (SPDP) names only a participant GUID; its State writer (SEDP)
-// names the topic, host and pid an engineer needs to find it. StartupCheck waits for the writer up
-// to `quiet`, within the window, which is enough on a quiet host; on a loaded one (a fresh
-// machine's test suite, its TSan build beside it) the writer came after the verdict and the refusal
-// named only the GUID. So the refusal, once decided, waits this much longer for a name to give.
-constexpr Duration kTwinNamingGrace = std::chrono::seconds(2);
-
 std::string describe(const TwinPeer& peer) {
   runtime::TextBuffer<128> origin;
   describe_origin(peer, origin);
@@ -106,8 +99,8 @@ Expected<void> TwinWatch::check_at_start(Duration window, Duration quiet) const 
     // Until the rule can decide (StartupCheck::decides_by), looking at discovery meanwhile.
     std::this_thread::sleep_for(std::min(kStartupPollStep, check.decides_by() - now));
   }
-  for (const Time named_by = steady_now() + kTwinNamingGrace;
-       snapshot.count == 0 && steady_now() < named_by;) {
+  // A twin by identity alone: its writer names it (StartupCheck::waits_for_name).
+  while (check.waits_for_name(snapshot.count, steady_now())) {
     std::this_thread::sleep_for(kStartupPollStep);
     copy_if_changed(seen, snapshot);
   }

@@ -126,5 +126,30 @@ TEST_F(StartupCheckTest, DecidesByAfterATwinsIdentityIsTheEndOfItsWaitForWriters
   EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(17)), StartupVerdict::kTwin);
 }
 
+// A twin known by identity alone has no name yet but its GUID: the refusal waits for its writer
+// (topic, host, pid) up to kNamingGrace after the verdict, and not a moment once the writer is there.
+TEST_F(StartupCheckTest, ARefusalByIdentityWaitsForTheTwinsWriterToNameItForTheGraceOnly) {
+  const std::vector twin = {participant(7, hub_user_data(5, "", "dock_ecu"))};
+  EXPECT_FALSE(check_.waits_for_name(0, at(1)));  // no verdict yet
+  EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(2)), StartupVerdict::kWait);
+  EXPECT_FALSE(check_.waits_for_name(0, at(3)));  // still deciding: nothing to name
+  EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(17)), StartupVerdict::kTwin);
+  EXPECT_TRUE(check_.twin_by_identity());
+  const Duration grace = StartupCheck::kNamingGrace;
+  EXPECT_TRUE(check_.waits_for_name(0, at(17)));
+  EXPECT_TRUE(check_.waits_for_name(0, at(17) + grace - milliseconds(1)));
+  EXPECT_FALSE(check_.waits_for_name(0, at(17) + grace));  // the grace is over: named by GUID
+  EXPECT_FALSE(check_.waits_for_name(1, at(18)));          // its writer arrived: named now
+  // A later update (the caller looked again) does not move the verdict's time.
+  EXPECT_EQ(check_.update(twin, 1, at(1), 0, at(500)), StartupVerdict::kTwin);
+  EXPECT_FALSE(check_.waits_for_name(0, at(17) + grace));
+}
+
+TEST_F(StartupCheckTest, ARefusalByAWriterHasItsNameAndDoesNotWait) {
+  EXPECT_EQ(check_.update({}, 0, 1, at(1)), StartupVerdict::kTwin);
+  EXPECT_FALSE(check_.twin_by_identity());
+  EXPECT_FALSE(check_.waits_for_name(0, at(2)));
+}
+
 }  // namespace
 }  // namespace hubrt::assembly

@@ -121,6 +121,18 @@ class StartupCheck {
   [[nodiscard]] bool twin_by_identity() const noexcept { return claimed_; }
   // The participant that announced this hub's identity (meaningful when twin_by_identity()).
   [[nodiscard]] const dds::Guid& claimant() const noexcept { return claimant_; }
+  // A twin known by its identity alone (SPDP) names only a participant GUID; its State writer
+  // (SEDP) names the topic, host and pid an engineer needs to find it. update() waits for the
+  // writer up to `quiet`, enough on a quiet host; on a loaded one (a fresh machine's test suite
+  // with the TSan build beside it) the writer came after the verdict and the refusal named only
+  // the GUID. So the refusal, once decided, waits up to this much longer for a name to give.
+  static constexpr Duration kNamingGrace = std::chrono::seconds(2);
+  // True while the refusal should still wait for a name: the verdict was a twin by identity alone,
+  // `twin_writers` (writers of this hub's States seen now) is still 0, and kNamingGrace since the
+  // verdict has not passed.
+  [[nodiscard]] bool waits_for_name(std::size_t twin_writers, Time now) const noexcept {
+    return claimed_ && decided_ && twin_writers == 0 && now - decided_at_ < kNamingGrace;
+  }
 
  private:
   std::string identity_;
@@ -133,6 +145,8 @@ class StartupCheck {
   bool claimed_ = false;
   Time claimed_at_{};
   dds::Guid claimant_{};
+  bool decided_ = false;  // update() returned kTwin by identity at decided_at_
+  Time decided_at_{};
 };
 
 // Turns the twins seen each cycle into the hub's alerts and the verdict.
