@@ -75,8 +75,7 @@ StartupVerdict StartupCheck::update(const std::vector<dds::WatchedParticipant>& 
   const bool over = now - begin_ >= window_;
   if (claimed_) {
     if (!over && now - claimed_at_ < quiet_) return StartupVerdict::kWait;
-    if (!decided_) decided_at_ = now;
-    decided_ = true;
+    if (!twin_decided_at_) twin_decided_at_ = now;
     return StartupVerdict::kTwin;
   }
   if (over) return StartupVerdict::kAlone;

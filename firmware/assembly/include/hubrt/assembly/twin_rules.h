@@ -131,7 +131,7 @@ class StartupCheck {
   // `twin_writers` (writers of this hub's States seen now) is still 0, and kNamingGrace since the
   // verdict has not passed.
   [[nodiscard]] bool waits_for_name(std::size_t twin_writers, Time now) const noexcept {
-    return claimed_ && decided_ && twin_writers == 0 && now - decided_at_ < kNamingGrace;
+    return twin_decided_at_ && twin_writers == 0 && now - *twin_decided_at_ < kNamingGrace;
   }
 
  private:
@@ -145,8 +145,7 @@ class StartupCheck {
   bool claimed_ = false;
   Time claimed_at_{};
   dds::Guid claimant_{};
-  bool decided_ = false;  // update() returned kTwin by identity at decided_at_
-  Time decided_at_{};
+  std::optional<Time> twin_decided_at_;  // when update() first returned kTwin by identity
 };
 
 // Turns the twins seen each cycle into the hub's alerts and the verdict.
