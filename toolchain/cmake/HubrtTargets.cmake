@@ -17,8 +17,8 @@ if(HUBRT_SANITIZE)
   if("address" IN_LIST _hubrt_sanitizers AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     # clang's default (=runtime) puts in every function with locals a fake-stack branch that only
     # ASAN_OPTIONS=detect_stack_use_after_return=1 takes; nothing here sets it (clang 14's runtime
-    # default is off), so the code was compiled and never run. Test objects 1.00x, library
-    # objects 0.97x of the CPU without it (docs/ci.md, "Less instrumentation in the tests' own code").
+    # default is off), so the code was compiled and never run. Library objects 0.956x, test
+    # objects 1.016x (noise) of the CPU without it (docs/ci.md, "Less instrumentation in the tests' own code").
     add_compile_options(-fsanitize-address-use-after-return=never)
   endif()
   # The test programs' own sources (hubrt_add_test; not the fakes, simulators and support
