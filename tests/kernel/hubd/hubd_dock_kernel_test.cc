@@ -9,6 +9,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <functional>
@@ -129,8 +130,13 @@ class HubdDockKernelTest : public ::testing::Test {
     options.hub = "dock_ecu";
     options.extra_args = {"--backend", "linux"};
     options.extra_args.insert(options.extra_args.end(), extra_args.begin(), extra_args.end());
+    const auto began = steady_clock::now();
     ASSERT_NO_FATAL_FAILURE(hub_.start(options)) << "board file " << board_->path() << ":\n"
                                                  << board_->text();
+    // In every run's log: how near a start comes to kPatience (a fresh guest's first hubd reads
+    // its program and libraries through 9p for the first time).
+    std::printf("hubd started and matched in %.1f s\n",
+                std::chrono::duration<double>(steady_clock::now() - began).count());
   }
 
   // Takes the next State into state_; false if none comes within `timeout`.
@@ -182,7 +188,7 @@ class HubdDockKernelTest : public ::testing::Test {
 };
 
 TEST_F(HubdDockKernelTest, SlotsFollowThePullsOfTheirLines) {
-  start_hub(chip_, ChipReference::kPath);
+  ASSERT_NO_FATAL_FAILURE(start_hub(chip_, ChipReference::kPath));
   ASSERT_TRUE(wait_for_state([](const DockState& s) {
     return occupancy(s) == 0U && s.error_list._length == 0;
   })) << context();
@@ -201,7 +207,7 @@ TEST_F(HubdDockKernelTest, SlotsFollowThePullsOfTheirLines) {
 TEST_F(HubdDockKernelTest, RequestsItsLinesWithTheBoardsPullDownBias) {
   // The world pulls every slot line up before hubd runs...
   for (std::size_t slot = 0; slot < kDockSlots.size(); ++slot) pull(chip_, slot, Pull::kUp);
-  start_hub(chip_, ChipReference::kPath);
+  ASSERT_NO_FATAL_FAILURE(start_hub(chip_, ChipReference::kPath));
   // ...but hubd requests them with the board's pull-down bias, which gpio-sim applies as the
   // line's pull: from its first State on, hubd reads them low (without the bias: all occupied).
   ASSERT_TRUE(next_state(kPatience)) << context();
@@ -225,7 +231,7 @@ struct PulseOutcome {
 TEST_F(HubdDockKernelTest, DebounceHidesPulsesShorterThanItsWindow) {
   // At 100 Hz the hub reads its lines every 10 ms, so it reads many of the short pulses below and,
   // without the 20 ms debounce, would report them.
-  start_hub(chip_, ChipReference::kPath, {"--rate", "100"});
+  ASSERT_NO_FATAL_FAILURE(start_hub(chip_, ChipReference::kPath, {"--rate", "100"}));
   ASSERT_TRUE(wait_for_occupancy(0)) << context();
   constexpr auto kHold = milliseconds(2);
   constexpr std::int64_t kWindowNs = std::int64_t{kDockDebounceMs} * 1'000'000;
@@ -309,7 +315,7 @@ TEST_F(HubdDockKernelTest, DebounceHidesPulsesShorterThanItsWindow) {
 }
 
 TEST_F(HubdDockKernelTest, EchoesCommandsAndDropsFreshMsgWhenTheyStop) {
-  start_hub(chip_, ChipReference::kPath);
+  ASSERT_NO_FATAL_FAILURE(start_hub(chip_, ChipReference::kPath));
   ASSERT_TRUE(command_writer_->wait_for_readers(1, kPatience));
   ASSERT_TRUE(wait_for_state([](const DockState& s) { return !s.fresh_msg; }))
       << "not fresh before any command";
@@ -348,7 +354,7 @@ TEST_F(HubdDockKernelTest, ReportsARemovedChipAndRecoversWhenItComesBack) {
   ASSERT_TRUE(made) << made.error().message;
   std::optional<ScopedGpioSimChip> expander(std::move(*made));
   const GpioSimChip first = expander->chip();
-  start_hub(first, ChipReference::kLabel);
+  ASSERT_NO_FATAL_FAILURE(start_hub(first, ChipReference::kLabel));
   ASSERT_TRUE(wait_for_state([](const DockState& s) {
     return occupancy(s) == 0U && s.error_list._length == 0;
   })) << context();
@@ -395,7 +401,7 @@ TEST_F(HubdDockKernelTest, ReportsALineHeldByAnotherProgramUntilItIsReleased) {
   ASSERT_NE(line, nullptr);
   ASSERT_EQ(gpiod_line_request_input(line, "kernel-test-holder"), 0);
 
-  start_hub(chip_, ChipReference::kPath);
+  ASSERT_NO_FATAL_FAILURE(start_hub(chip_, ChipReference::kPath));
   ASSERT_TRUE(wait_for_state([](const DockState& s) { return has_error(s, "slot 'spare'"); })) << context();
   EXPECT_TRUE(has_error(state_.get(), "busy, held by 'kernel-test-holder'")) << error_list(state_.get());
   EXPECT_EQ(state_.get().error_list._length, 1U)

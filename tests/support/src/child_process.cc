@@ -21,9 +21,11 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include <sys/syscall.h>
 #include <sys/wait.h>
@@ -40,6 +42,15 @@ std::string errno_text(int err) {
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A /proc stat line's fields from the third (the state) on: the command name before them may hold
+// blanks and parentheses, so they start after its last ')'.
+std::vector<std::string> stat_fields(const std::string& stat) {
+  const auto name_end = stat.rfind(')');
+  if (name_end == std::string::npos) return {};
+  std::istringstream fields(stat.substr(name_end + 1));
+  return {std::istream_iterator<std::string>(fields), std::istream_iterator<std::string>()};
 }
 
 // Owns posix_spawn's C structures for the duration of one spawn.
@@ -279,6 +290,41 @@ bool ChildProcess::has_exited() const noexcept {
   // WNOWAIT: look without reaping, so that wait() still gets the exit status.
   if (::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOHANG | WNOWAIT) != 0) return true;
   return info.si_pid != 0;
+}
+
+std::string ChildProcess::activity() const {
+  if (pid_ <= 0) return "reaped";
+  if (has_exited()) return "exited";
+  const std::string proc = "/proc/" + std::to_string(pid_);
+  const std::vector<std::string> field = stat_fields(read_file(proc + "/stat"));
+  // field[0] is stat's field 3 (state); utime, stime and num_threads are fields 14, 15 and 20.
+  if (field.size() < 18) return "still running (its /proc/" + std::to_string(pid_) + "/stat is unreadable)";
+  const double cpu_seconds = static_cast<double>(std::stoull(field[11]) + std::stoull(field[12])) /
+                             static_cast<double>(::sysconf(_SC_CLK_TCK));
+  std::ostringstream text;
+  text.precision(2);
+  text << std::fixed << "still running: state " << field[0] << ", " << cpu_seconds << " s of CPU in "
+       << field[17] << " thread(s)";
+  // Each thread's name, state and wait channel (where the kernel shows it): which wait a stuck
+  // start is in (a read of a network file system, a futex, a poll for a DNS answer).
+  std::error_code error;
+  std::vector<std::string> threads;
+  for (const auto& task : std::filesystem::directory_iterator(proc + "/task", error)) {
+    const std::string dir = task.path().string();
+    const std::vector<std::string> task_field = stat_fields(read_file(dir + "/stat"));
+    std::string name = read_file(dir + "/comm");
+    if (!name.empty() && name.back() == '\n') name.pop_back();
+    std::string thread = name + " " + (task_field.empty() ? std::string("?") : task_field[0]);
+    const std::string wchan = read_file(dir + "/wchan");
+    if (!wchan.empty() && wchan != "0") thread += " in " + wchan;
+    threads.push_back(std::move(thread));
+  }
+  std::sort(threads.begin(), threads.end());
+  constexpr std::size_t kThreadsShown = 24;
+  for (std::size_t i = 0; i < threads.size() && i < kThreadsShown; ++i)
+    text << (i == 0 ? ": " : ", ") << threads[i];
+  if (threads.size() > kThreadsShown) text << ", ...";
+  return text.str();
 }
 
 bool ChildProcess::wait_for_output(std::string_view needle, Duration timeout) const {

@@ -32,9 +32,12 @@ Expected<HubProcess> HubProcess::start(const TestDomain& domain, const HubProces
   auto child = ChildProcess::start(hubd_path(), args, env, options.output);
   if (!child) return std::move(child).error();
   if (options.output == OutputMode::kClosedPipe) return HubProcess(std::move(*child));
-  if (!child->wait_for_output("running hub", std::chrono::seconds(20))) {
-    return make_error(ErrorCode::kTimeout, fmt::format("hubd did not start; its output:\n{}{}",
-                                                       child->stdout_text(), child->stderr_text()));
+  if (!child->wait_for_output("running hub", options.start_patience)) {
+    return make_error(
+        ErrorCode::kTimeout,
+        fmt::format("hubd did not start within {} s ({}); its output:\n{}{}",
+                    std::chrono::duration_cast<std::chrono::seconds>(options.start_patience).count(),
+                    child->activity(), child->stdout_text(), child->stderr_text()));
   }
   return HubProcess(std::move(*child));
 }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -57,6 +58,7 @@ void HubUnderTest::open(const std::string& participant_name) {
 
 void HubUnderTest::start_unmatched(HubProcessOptions options) {
   ASSERT_TRUE(domain_.has_value()) << "HubUnderTest::open() first";
+  options.start_patience = std::max(options.start_patience, patience_);
   auto hub = HubProcess::start(*domain_, options);
   ASSERT_TRUE(hub) << hub.error().message;
   hub_.emplace(std::move(*hub));

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -96,6 +97,45 @@ TEST(ChildProcess, WaitForOutputTimesOutWhileTheChildIsSilent) {
   auto child = ChildProcess::start("/bin/sh", {"-c", "exec sleep 600"});
   ASSERT_TRUE(child) << child.error().message;
   EXPECT_FALSE(child->wait_for_output("ready", milliseconds(50)));
+}
+
+// What a failure message says about a child a wait gave up on: a blocked one sleeps (state S), a
+// busy one runs (R) and has used CPU; an ended one is told apart from both.
+TEST(ChildProcess, ActivityTellsASleepingChildFromABusyOneAndAnEndedOne) {
+  auto sleeping = ChildProcess::start("/bin/sh", {"-c", "echo up; exec sleep 600"});
+  ASSERT_TRUE(sleeping) << sleeping.error().message;
+  ASSERT_TRUE(sleeping->wait_for_output("up", kStartup));
+  // Until the shell has exec'd sleep (a moment after it wrote "up").
+  std::string activity;
+  for (const auto deadline = std::chrono::steady_clock::now() + kStartup;
+       std::chrono::steady_clock::now() < deadline && activity.find("state S") == std::string::npos;) {
+    std::this_thread::sleep_for(milliseconds(20));
+    activity = sleeping->activity();
+  }
+  EXPECT_NE(activity.find("still running: state S, "), std::string::npos) << activity;
+  EXPECT_NE(activity.find(" s of CPU in 1 thread(s): sleep S"), std::string::npos) << activity;
+
+  auto busy = ChildProcess::start("/bin/sh", {"-c", "echo up; while :; do :; done"});
+  ASSERT_TRUE(busy) << busy.error().message;
+  ASSERT_TRUE(busy->wait_for_output("up", kStartup));
+  // Runnable (R) even while it waits for a core on a busy machine; its CPU grows past 0.00 s.
+  activity.clear();
+  for (const auto deadline = std::chrono::steady_clock::now() + kStartup;
+       std::chrono::steady_clock::now() < deadline &&
+       (activity.find("state R") == std::string::npos ||
+        activity.find(", 0.00 s of CPU") != std::string::npos);) {
+    std::this_thread::sleep_for(milliseconds(20));
+    activity = busy->activity();
+  }
+  EXPECT_NE(activity.find("still running: state R, "), std::string::npos) << activity;
+  EXPECT_EQ(activity.find(", 0.00 s of CPU"), std::string::npos) << activity;
+
+  auto ended = ChildProcess::start("/bin/sh", {"-c", "exit 0"});
+  ASSERT_TRUE(ended) << ended.error().message;
+  EXPECT_FALSE(ended->wait_for_output("ready", kStartup));
+  EXPECT_EQ(ended->activity(), "exited");
+  ASSERT_TRUE(ended->wait(kStartup));
+  EXPECT_EQ(ended->activity(), "reaped");
 }
 
 TEST(ChildProcess, DestructorKillsAndReapsARunningChild) {

@@ -72,6 +72,12 @@ class ChildProcess {
   // child has exited without writing it (false). Does not reap the child.
   bool wait_for_output(std::string_view needle, Duration timeout) const;
 
+  // What the child is doing, for a failure message after a wait for it gave up: "exited" (not
+  // yet reaped), or from /proc "still running: state S, 0.42 s of CPU in 2 thread(s): hubd S in
+  // do_sys_poll, recvUC S in ..." (each thread's name, state and, where the kernel shows it, wait
+  // channel). A slow start uses CPU; a stuck one does not, and its waits say on what.
+  [[nodiscard]] std::string activity() const;
+
   // Sends `signal` to the child. Errors: kFailedPrecondition if it was already reaped.
   Expected<void> signal(int sig) const;
 

@@ -2,6 +2,7 @@
 // hub_under_test.h, adds the planner and the State readers around it).
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,15 @@ struct HubProcessOptions {
   // kClosedPipe: stdout and stderr lead nowhere (`hubd | head -0`); start() then cannot wait for
   // "running hub" and returns once hubd is spawned.
   OutputMode output = OutputMode::kFiles;
+  // How long start() waits for "running hub": start-up under sanitizers on a loaded 2-core
+  // machine takes seconds. HubUnderTest waits the longer of this and its own patience.
+  Duration start_patience = std::chrono::seconds(20);
 };
 
 class HubProcess {
  public:
-  // Starts hubd and waits (up to 20 s: start-up under sanitizers on a loaded 2-core machine is
-  // slow) until it says it runs. Errors carry hubd's output.
+  // Starts hubd and waits (up to options.start_patience) until it says it runs. Errors carry
+  // hubd's output and what it was doing when the wait gave up (ChildProcess::activity).
   // The hubd started is this build's, or the program HUBRT_TEST_HUBD names (a hubd built elsewhere
   // with other hub types: the new-hub check, tests/new_hub).
   static Expected<HubProcess> start(const TestDomain& domain, const HubProcessOptions& options);
