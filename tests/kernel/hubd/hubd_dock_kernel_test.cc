@@ -129,11 +129,12 @@ class HubdDockKernelTest : public ::testing::Test {
     options.board = board_->path();
     options.hub = "dock_ecu";
     options.extra_args = {"--backend", "linux"};
+    options.start_patience = kernel_test::kHubdStartPatience;
     options.extra_args.insert(options.extra_args.end(), extra_args.begin(), extra_args.end());
     const auto began = steady_clock::now();
     ASSERT_NO_FATAL_FAILURE(hub_.start(options)) << "board file " << board_->path() << ":\n"
                                                  << board_->text();
-    // In every run's log: how near a start comes to kPatience (a fresh guest's first hubd reads
+    // In every run's log: how near a start comes to kHubdStartPatience (a fresh guest's first hubd reads
     // its program and libraries through 9p for the first time).
     std::printf("hubd started and matched in %.1f s\n",
                 std::chrono::duration<double>(steady_clock::now() - began).count());

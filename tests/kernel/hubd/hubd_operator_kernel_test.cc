@@ -75,8 +75,10 @@ class HubdOperatorKernelTest : public ::testing::Test {
     ASSERT_NO_FATAL_FAILURE(hub_.open("kernel-test-planner"));
     ASSERT_NO_FATAL_FAILURE(hub_.make_writer(command_writer_, "/operator_panel/command"));
     ASSERT_NO_FATAL_FAILURE(hub_.make_stream(states_, "/operator_hub/panel/state"));
-    ASSERT_NO_FATAL_FAILURE(
-        hub_.start({.board = board_, .hub = hub_file_, .extra_args = {"--backend", "linux"}}));
+    ASSERT_NO_FATAL_FAILURE(hub_.start({.board = board_,
+                                        .hub = hub_file_,
+                                        .extra_args = {"--backend", "linux"},
+                                        .start_patience = kernel_test::kHubdStartPatience}));
   }
   void TearDown() override {
     hub_.end_hub();  // before the reader it holds goes

@@ -127,7 +127,8 @@ class HubdSafeOutputsKernelTest : public ::testing::Test {
   // then sits at its unsafe level.
   void start_hub_with_gripper_released() {
     // (start() also waits until hubd reads the commands: one written before would be lost.)
-    ASSERT_NO_FATAL_FAILURE(hub_.start({.board = board_path_, .hub = "rsp_ecu"}));
+    ASSERT_NO_FATAL_FAILURE(hub_.start(
+        {.board = board_path_, .hub = "rsp_ecu", .start_patience = kernel_test::kHubdStartPatience}));
     // hubd requested the switch with a pull-down bias; air comes after that.
     ASSERT_TRUE(set_pull(chip(), kPressureLine, Pull::kUp));
     const auto deadline = steady_clock::now() + kPatience;

@@ -3,6 +3,7 @@
 // the functions here return std::nullopt, so a test can skip politely on an ordinary host.
 #pragma once
 
+#include <chrono>
 #include <optional>
 #include <string>
 
@@ -27,6 +28,12 @@ struct GpioSimChip {
 // The virtual CAN interface (HUBRT_VCAN, "vcan0"), up, made fresh for this test program.
 // std::nullopt outside the tier. Thread-safe.
 [[nodiscard]] std::optional<std::string> vcan_from_env();
+
+// How long a test waits for hubd to start in the guest (HubProcessOptions::start_patience). The
+// guest runs under TCG, and in .ci/run beside the fuzz and arm64 builds (idle priority): there the
+// Dock program's six starts took 8.4-13.3 s, against 4.2-6.1 s beside nothing but the TSan build,
+// and CI once gave up on one after 20 s. Only a failing start waits this long.
+inline constexpr std::chrono::seconds kHubdStartPatience{60};
 
 // Why a kernel-tier test cannot run here, for GTEST_SKIP().
 inline constexpr const char* kNotInKernelTier =
