@@ -102,16 +102,25 @@ TEST(ChildProcess, WaitForOutputTimesOutWhileTheChildIsSilent) {
 // What a failure message says about a child a wait gave up on: a blocked one sleeps (state S), a
 // busy one runs (R) and has used CPU; an ended one is told apart from both.
 TEST(ChildProcess, ActivityTellsASleepingChildFromABusyOneAndAnEndedOne) {
+  // `child`'s activity once `settled` holds for it, or the last one after kStartup.
+  const auto activity_once = [](const ChildProcess& child, const auto& settled) {
+    std::string activity;
+    for (const auto deadline = std::chrono::steady_clock::now() + kStartup;
+         std::chrono::steady_clock::now() < deadline && !settled(activity);) {
+      std::this_thread::sleep_for(milliseconds(20));
+      activity = child.activity();
+    }
+    return activity;
+  };
+  const auto has = [](const std::string& text, const char* part) {
+    return text.find(part) != std::string::npos;
+  };
+
   auto sleeping = ChildProcess::start("/bin/sh", {"-c", "echo up; exec sleep 600"});
   ASSERT_TRUE(sleeping) << sleeping.error().message;
   ASSERT_TRUE(sleeping->wait_for_output("up", kStartup));
-  // Until the shell has exec'd sleep (a moment after it wrote "up").
-  std::string activity;
-  for (const auto deadline = std::chrono::steady_clock::now() + kStartup;
-       std::chrono::steady_clock::now() < deadline && activity.find("state S") == std::string::npos;) {
-    std::this_thread::sleep_for(milliseconds(20));
-    activity = sleeping->activity();
-  }
+  // Once the shell has exec'd sleep (a moment after it wrote "up").
+  std::string activity = activity_once(*sleeping, [&](const std::string& a) { return has(a, "state S"); });
   EXPECT_NE(activity.find("still running: state S, "), std::string::npos) << activity;
   EXPECT_NE(activity.find(" s of CPU in 1 thread(s): sleep S"), std::string::npos) << activity;
 
@@ -119,14 +128,8 @@ TEST(ChildProcess, ActivityTellsASleepingChildFromABusyOneAndAnEndedOne) {
   ASSERT_TRUE(busy) << busy.error().message;
   ASSERT_TRUE(busy->wait_for_output("up", kStartup));
   // Runnable (R) even while it waits for a core on a busy machine; its CPU grows past 0.00 s.
-  activity.clear();
-  for (const auto deadline = std::chrono::steady_clock::now() + kStartup;
-       std::chrono::steady_clock::now() < deadline &&
-       (activity.find("state R") == std::string::npos ||
-        activity.find(", 0.00 s of CPU") != std::string::npos);) {
-    std::this_thread::sleep_for(milliseconds(20));
-    activity = busy->activity();
-  }
+  activity = activity_once(
+      *busy, [&](const std::string& a) { return has(a, "state R") && !has(a, ", 0.00 s of CPU"); });
   EXPECT_NE(activity.find("still running: state R, "), std::string::npos) << activity;
   EXPECT_EQ(activity.find(", 0.00 s of CPU"), std::string::npos) << activity;
 
