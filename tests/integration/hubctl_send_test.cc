@@ -3,6 +3,7 @@
 // sim bridges are), on /sim/fault as in a fault scenario. And `--wait N` waits for N readers,
 // or fails clearly with nothing sent.
 #include <csignal>
+#include <cstdio>
 #include <optional>
 #include <thread>
 
@@ -95,7 +96,9 @@ class HubctlSendTest : public ::testing::Test {
 TEST_F(HubctlSendTest, OnceReachesEveryReaderOnTheDomain) {
   std::vector<ChildProcess> readers = start_readers(3);
   await_readers(3);
-  ChildProcess send = start_send({"--once", "--timeout", "30"});
+  // No LIFESPAN: the subject is reaching every reader, however slowly a loaded machine lets them
+  // match and acknowledge; what a LIFESPAN adds is AnAcknowledgementPastTheLifespanIsReported's.
+  ChildProcess send = start_send({"--once", "--timeout", "30", "--lifespan-ms", "0"});
   const Finished sent = finish(send, seconds(60));
   EXPECT_TRUE(sent.status.exited_with(0)) << sent.status.describe() << "\n" << sent.output;
   EXPECT_NE(sent.output.find("sent 1 sample(s) to 3 reader(s); all acknowledged"), std::string::npos)
@@ -152,7 +155,11 @@ TEST_F(HubctlSendTest, CtrlCWhileWaitingForReadersSaysInterruptedAndExits130) {
 TEST_F(HubctlSendTest, WaitForNReadersWaitsForALateOne) {
   std::vector<ChildProcess> readers = start_readers(2);
   await_readers(2);
-  ChildProcess send = start_send({"--once", "--wait", "3", "--timeout", "60"});
+  // No LIFESPAN: the late reader starts while send waits, and the writer can match it a while
+  // before it matches the writer back (two-sided discovery; CI once saw more than the default
+  // 1000 ms on a loaded machine). Its acknowledgement then comes past the LIFESPAN, for a gap in
+  // place of the sample: what the test below shows send reporting.
+  ChildProcess send = start_send({"--once", "--wait", "3", "--timeout", "60", "--lifespan-ms", "0"});
   // Long enough for send to have matched the first two and be waiting (it would have written by
   // now without --wait); the reader's own start-up adds more.
   std::this_thread::sleep_for(seconds(2));
@@ -168,6 +175,48 @@ TEST_F(HubctlSendTest, WaitForNReadersWaitsForALateOne) {
                                            << got.output;
     EXPECT_NE(got.output.find("pressure_drop"), std::string::npos) << "reader " << i << ":\n" << got.output;
   }
+}
+
+// A reader that acknowledges only after the sample's LIFESPAN may have had a gap in its place:
+// send says so instead of "all acknowledged". Two samples 4 s apart: the reader prints the first,
+// and is then stopped (SIGSTOP) from before the second write until 2 s or more after it, ten times
+// the LIFESPAN, so its acknowledgement of the last sample cannot be in time. (A reader stopped
+// before matching could not match at all.)
+TEST_F(HubctlSendTest, AnAcknowledgementPastTheLifespanIsReported) {
+  auto started = ChildProcess::start(
+      HUBRT_HUBCTL_PATH, {"echo", "/sim/fault", "--type", kFaultType, "--count", "2", "--timeout", "120"},
+      domain_->env());
+  ASSERT_TRUE(started) << started.error().message;
+  ChildProcess& reader = *started;
+  await_readers(1);
+  ChildProcess send = start_send(
+      {"--count", "2", "--rate", "0.25", "--wait", "1", "--timeout", "60", "--lifespan-ms", "200"});
+  // 60 s: start-up under sanitizers on a loaded machine.
+  const auto deadline = std::chrono::steady_clock::now() + seconds(60);
+  while (reader.stdout_text().find("pressure_drop") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_NE(reader.stdout_text().find("pressure_drop"), std::string::npos) << send.stdout_text();
+  ASSERT_TRUE(reader.signal(SIGSTOP));
+  std::this_thread::sleep_for(seconds(6));
+  EXPECT_TRUE(reader.signal(SIGCONT));
+  const Finished sent = finish(send, seconds(60));
+  EXPECT_TRUE(sent.status.exited_with(0)) << sent.status.describe() << "\n" << sent.output;
+  EXPECT_NE(sent.output.find("after it was written, past its 200 ms LIFESPAN"), std::string::npos)
+      << sent.output;
+  EXPECT_NE(sent.output.find("sent 2 sample(s) to 1 reader(s); acknowledged past the LIFESPAN"),
+            std::string::npos)
+      << sent.output;
+  EXPECT_EQ(sent.output.find("all acknowledged"), std::string::npos) << sent.output;
+  // The figure is the stopped reader's, not the 200 ms expiry's: Cyclone waits for every matched
+  // reader's acknowledgement (dds_wait_for_acks), and the reader stayed stopped 2 s past the write.
+  double delay_s = 0.0;
+  const auto at = sent.output.find("was acknowledged ");
+  ASSERT_NE(at, std::string::npos) << sent.output;
+  ASSERT_EQ(std::sscanf(sent.output.c_str() + at, "was acknowledged %lf s after", &delay_s), 1)
+      << sent.output;
+  EXPECT_GE(delay_s, 1.0) << sent.output;
 }
 
 }  // namespace

@@ -128,6 +128,7 @@ int run_send(const SendOptions& options) {
 
   const Duration period = seconds(1.0 / options.rate_hz);
   auto next = std::chrono::steady_clock::now();
+  auto last_write = next;
   std::size_t sent = 0;
   // Readers that finish with the sample (echo --count 1) leave before the end: count them now.
   const Result<std::uint32_t> matched = writer->matched_readers();
@@ -139,7 +140,9 @@ int run_send(const SendOptions& options) {
       fmt::print(stderr, "hubctl send: write failed: {}\n", to_string(status.code()));
       return kExitFailed;
     }
+    last_write = std::chrono::steady_clock::now();
     ++sent;
+    if (limit != 0 && sent >= limit) break;  // the acknowledgements come next, not another period
     next += period;
     std::this_thread::sleep_until(next);
   }
@@ -152,9 +155,17 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: sent {} sample(s) but {}\n", sent, acked.error().message);
     return kExitFailed;
   }
+  const std::uint32_t readers_matched = matched.is_ok() ? matched.value() : 0;
+  const Duration ack_delay = std::chrono::steady_clock::now() - last_write;
+  if (const auto late = late_acknowledgement(ack_delay, options.lifespan_ms)) {
+    fmt::print(stderr, "hubctl send: {}\n", *late);
+    if (!options.quiet)
+      fmt::print("sent {} sample(s) to {} reader(s); acknowledged past the LIFESPAN\n", sent,
+                 readers_matched);
+    return kExitOk;
+  }
   if (!options.quiet)
-    fmt::print("sent {} sample(s) to {} reader(s); all acknowledged\n", sent,
-               matched.is_ok() ? matched.value() : 0);
+    fmt::print("sent {} sample(s) to {} reader(s); all acknowledged\n", sent, readers_matched);
   return kExitOk;
 }
 

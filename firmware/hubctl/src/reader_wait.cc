@@ -47,4 +47,13 @@ Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, cons
   }
 }
 
+std::optional<std::string> late_acknowledgement(Duration ack_delay, std::uint32_t lifespan_ms) {
+  if (lifespan_ms == 0 || ack_delay < std::chrono::milliseconds(lifespan_ms)) return std::nullopt;
+  return fmt::format(
+      "warning: the last sample was acknowledged {:.2f} s after it was written, past its {} ms LIFESPAN: the "
+      "reader that was late may have got a gap in its place (--lifespan-ms 0 for a sample that must reach "
+      "every reader)",
+      to_seconds(ack_delay), lifespan_ms);
+}
+
 }  // namespace hubrt::hubctl

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "hubrt/base/status.h"
 #include "hubrt/base/time.h"
@@ -35,5 +37,13 @@ struct ReadersMatched {
 // "nobody reads <topic> (waited <t> s)"; Cyclone's code for a deleted writer.
 Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
                                           const std::string& ros_topic);
+
+// Matching is two-sided: the writer can match a reader that starting up or a loaded machine keeps
+// from matching the writer back for a while. Cyclone 0.10.2 drops an unacknowledged sample from the
+// writer's history LIFESPAN after the write (dds::Qos::lifespan), and a reader that asks for it
+// later gets a gap, which it acknowledges like the sample. So "acknowledged" means "received" only
+// when it came within LIFESPAN of the write; `ack_delay` is that time for the last sample written.
+// Returns the warning to print when it did not (`lifespan_ms` 0: no LIFESPAN, never).
+std::optional<std::string> late_acknowledgement(Duration ack_delay, std::uint32_t lifespan_ms);
 
 }  // namespace hubrt::hubctl
