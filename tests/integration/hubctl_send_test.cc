@@ -178,10 +178,10 @@ TEST_F(HubctlSendTest, WaitForNReadersWaitsForALateOne) {
 }
 
 // A reader that acknowledges only after the sample's LIFESPAN may have had a gap in its place:
-// send says so instead of "all acknowledged". Two samples 4 s apart: the reader prints the first,
-// and is then stopped (SIGSTOP) from before the second write until 2 s or more after it, ten times
-// the LIFESPAN, so its acknowledgement of the last sample cannot be in time. (A reader stopped
-// before matching could not match at all.)
+// send says so instead of "all acknowledged". The default LIFESPAN (1000 ms), two samples 5 s
+// apart: the reader prints the first, and is then stopped (SIGSTOP) from before the second write
+// until 3 s or more after it, so its acknowledgement of the last sample cannot be in time. (A
+// reader stopped before matching could not match at all.)
 TEST_F(HubctlSendTest, AnAcknowledgementPastTheLifespanIsReported) {
   auto started = ChildProcess::start(
       HUBRT_HUBCTL_PATH, {"echo", "/sim/fault", "--type", kFaultType, "--count", "2", "--timeout", "120"},
@@ -189,8 +189,7 @@ TEST_F(HubctlSendTest, AnAcknowledgementPastTheLifespanIsReported) {
   ASSERT_TRUE(started) << started.error().message;
   ChildProcess& reader = *started;
   await_readers(1);
-  ChildProcess send = start_send(
-      {"--count", "2", "--rate", "0.25", "--wait", "1", "--timeout", "60", "--lifespan-ms", "200"});
+  ChildProcess send = start_send({"--count", "2", "--rate", "0.2", "--wait", "1", "--timeout", "60"});
   // 60 s: start-up under sanitizers on a loaded machine.
   const auto deadline = std::chrono::steady_clock::now() + seconds(60);
   while (reader.stdout_text().find("pressure_drop") == std::string::npos &&
@@ -199,24 +198,24 @@ TEST_F(HubctlSendTest, AnAcknowledgementPastTheLifespanIsReported) {
   }
   ASSERT_NE(reader.stdout_text().find("pressure_drop"), std::string::npos) << send.stdout_text();
   ASSERT_TRUE(reader.signal(SIGSTOP));
-  std::this_thread::sleep_for(seconds(6));
+  std::this_thread::sleep_for(seconds(8));
   EXPECT_TRUE(reader.signal(SIGCONT));
   const Finished sent = finish(send, seconds(60));
   EXPECT_TRUE(sent.status.exited_with(0)) << sent.status.describe() << "\n" << sent.output;
-  EXPECT_NE(sent.output.find("after it was written, past its 200 ms LIFESPAN"), std::string::npos)
+  EXPECT_NE(sent.output.find("after it was written, past its 1000 ms LIFESPAN"), std::string::npos)
       << sent.output;
   EXPECT_NE(sent.output.find("sent 2 sample(s) to 1 reader(s); acknowledged past the LIFESPAN"),
             std::string::npos)
       << sent.output;
   EXPECT_EQ(sent.output.find("all acknowledged"), std::string::npos) << sent.output;
-  // The figure is the stopped reader's, not the 200 ms expiry's: Cyclone waits for every matched
-  // reader's acknowledgement (dds_wait_for_acks), and the reader stayed stopped 2 s past the write.
+  // The figure is the stopped reader's, not the 1 s expiry's: Cyclone waits for every matched
+  // reader's acknowledgement (dds_wait_for_acks), and the reader stayed stopped 3 s past the write.
   double delay_s = 0.0;
   const auto at = sent.output.find("was acknowledged ");
   ASSERT_NE(at, std::string::npos) << sent.output;
   ASSERT_EQ(std::sscanf(sent.output.c_str() + at, "was acknowledged %lf s after", &delay_s), 1)
       << sent.output;
-  EXPECT_GE(delay_s, 1.0) << sent.output;
+  EXPECT_GE(delay_s, 2.0) << sent.output;
 }
 
 }  // namespace
