@@ -28,6 +28,7 @@ Prints one progress line per step and a Markdown table at the end; the JSON goes
 (default BUILD/bench-results/plant.json).
 """
 import argparse
+import collections
 import json
 import os
 import signal
@@ -50,6 +51,10 @@ HUBS = [("tool_ecu", "host-sim", "hubs/station/hub-files/tool_ecu.yaml"),
         ("operator_hub", "host-sim-operator-hub", "hubs/station/hub-files/operator_hub.yaml")]
 PROCESSES_PER_STATION = len(HUBS) + 2  # hubsim, the planner
 CONFORMANCE_TIMEOUT_S = 300  # one station's five hubs in parallel, on a host the plant keeps busy
+# A round of the full use-case takes about 33 s on a quiet host (README); a plant of 32 stations
+# keeps the host 80 % busy. Past ROUND_WAIT_S a planner is stopped where it is ("mid-round").
+ROUND_WAIT_S = 240
+PLANNER_LOOKAHEAD = 3  # about 13 s of suites each (docs/plant.md): 40 s of a round overlapped
 
 
 def progress(line):
@@ -88,7 +93,7 @@ def hub_file(source, namespace, folder, name):
 class Station:
     """One station's seven processes; the planner's output lines are read with their arrival times."""
 
-    def __init__(self, build, k, design, xml, scratch, quiet_planner):
+    def __init__(self, build, k, design, xml, scratch):
         self.k = k
         self.domain = BASE_DOMAIN if design == "shared" else BASE_DOMAIN + k
         self.namespace = f"/s{k}" if design == "shared" else ""
@@ -106,11 +111,14 @@ class Station:
         self._start("hubsim", [f"{build}/firmware/sim/station/hubsim", "--log-level", "warn", "--station",
                                os.path.join(REPO, "hubs/station/full-station.yaml")] + ns)
         play = [f"{build}/firmware/hubctl/hubctl", "play", os.path.join(REPO, "hubs/station/scenarios/full-use-case.yaml"),
-                "--rounds", "0", "--timeout", "60"] + ns + (["--quiet"] if quiet_planner else [])
+                "--rounds", "0", "--timeout", "60"] + ns
         self.planner = subprocess.Popen(play, env=self.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                         text=True, start_new_session=True)
         self.processes["planner"] = self.planner
-        self.planner_lines = []
+        # Not --quiet: the step and round lines say where the planner is (its first passing
+        # command step; the start of a round, where conform() stops it). The last lines are kept.
+        self.planner_lines = collections.deque(maxlen=40)
+        self.stop_at_round_start = threading.Event()
         threading.Thread(target=self._read_planner, daemon=True).start()
 
     def _start(self, name, argv):
@@ -121,8 +129,33 @@ class Station:
     def _read_planner(self):
         for line in self.planner.stdout:
             self.planner_lines.append(line)
+            # A round ends where it starts: the MiR home, no mission queued. Stopped as the next
+            # round begins, before its first move, the planner leaves the platform standing still.
+            if line.startswith("play: round") and self.stop_at_round_start.is_set() and self.planner.poll() is None:
+                self.planner.send_signal(signal.SIGINT)
             if self.first_pass is None and "PASS" in line and " command " in line:
                 self.first_pass = time.monotonic()
+
+    def stop_planner_between_rounds(self, timeout_s):
+        """Waits (at most timeout_s) for the planner, armed with stop_at_round_start, to stop at the
+        start of a round; past that, stops it where it is. Says which."""
+        self.stop_at_round_start.set()
+        if self.planner.poll() is not None and not self.planner_lines_say_interrupted():
+            return "had stopped"  # a failed step: its lines say which
+        try:
+            self.planner.wait(timeout=timeout_s)
+            return "between rounds"
+        except subprocess.TimeoutExpired:
+            self.planner.send_signal(signal.SIGINT)
+        try:
+            self.planner.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self.planner.kill()
+            self.planner.wait()
+        return "mid-round"
+
+    def planner_lines_say_interrupted(self):
+        return any(line.startswith("play: interrupted") for line in self.planner_lines)
 
     def failed(self):
         """The planner stopped by itself: a step failed (its output says which)."""
@@ -209,20 +242,24 @@ def probe(build, program, args, design, domain, xml, scratch, timeout_s=None):
 def conform(build, stations):
     """`hubctl conformance` of every hub of every station, the plant still running: each station's
     planner is stopped first (the suite commands the hubs itself, and two planners commanding one
-    hub measure neither), its hubs and hubsim keep running (the station's domain and Cyclone
-    configuration come with its environment), the other stations keep playing until
-    their turn. One station after the other, its five hubs in parallel (--parallel)."""
+    hub measure neither), between two rounds of its use-case: the suite's probes are for a platform
+    standing still (hubs/mir_com/conformance.yaml), and a planner stopped mid-mission leaves one in
+    the MiR's queue for the suite's `continue` to resume. The next PLANNER_LOOKAHEAD stations' planners
+    are told to stop at their next round too, so that waiting for a round overlaps the suites before.
+    Its hubs and hubsim keep running (the station's domain and Cyclone configuration come with its
+    environment), the other stations keep playing until their turn. One station after the other,
+    its five hubs in parallel (--parallel)."""
     names = [name for name, _, _ in HUBS]
-    passed, failures, t0 = 0, [], time.monotonic()
-    for s in stations:
-        progress(f"conformance: station {s.k + 1} of {len(stations)} (domain {s.domain})")
-        if s.planner.poll() is None:
-            s.planner.send_signal(signal.SIGINT)
-            try:
-                s.planner.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                s.planner.kill()
-                s.planner.wait()
+    passed, failures, stops, t0 = 0, [], collections.Counter(), time.monotonic()
+    for i, s in enumerate(stations):
+        for ahead in stations[i:i + 1 + PLANNER_LOOKAHEAD]:
+            ahead.stop_at_round_start.set()
+        progress(f"conformance: station {s.k + 1} of {len(stations)} (domain {s.domain}): its planner stops "
+                 "at the start of a round")
+        stop = s.stop_planner_between_rounds(ROUND_WAIT_S)
+        stops[stop] += 1
+        if stop != "between rounds":
+            progress(f"conformance: station {s.k + 1}'s planner {stop}")
         argv = [f"{build}/firmware/hubctl/hubctl", "conformance", "--parallel", "--domain", str(s.domain)] + [
                 arg for name in names for arg in ("--hub", name)]
         try:
@@ -242,7 +279,7 @@ def conform(build, stations):
                     failing.append(f"{topic}: {line.strip()}")
             failures.append({"station": s.k, "domain": s.domain, "failing": failing, "output": said})
     return {"stations": len(stations), "hubs": len(stations) * len(names), "stations_passed": passed,
-            "failures": failures, "seconds": round(time.monotonic() - t0, 1)}
+            "failures": failures, "planners_stopped": dict(stops), "seconds": round(time.monotonic() - t0, 1)}
 
 
 def run_plant(build, n, design, window, probes, conformance, tails=False):
@@ -253,14 +290,14 @@ def run_plant(build, n, design, window, probes, conformance, tails=False):
         try:
             start = time.monotonic()
             for k in range(n - 1):
-                stations.append(Station(build, k, design, xml, scratch, quiet_planner=True))
+                stations.append(Station(build, k, design, xml, scratch))
                 time.sleep(0.2)  # a plant is not switched on in one instant
             settle = 3 + 0.3 * n
             result["start_others_s"] = time.monotonic() - start
             progress(f"N={n} {design}: {n - 1} stations started in {result['start_others_s']:.1f} s; "
                      f"settling {settle:.0f} s, then the last one")
             time.sleep(settle)
-            last = Station(build, n - 1, design, xml, scratch, quiet_planner=False)
+            last = Station(build, n - 1, design, xml, scratch)
             stations.append(last)
             deadline = time.monotonic() + 120
             while last.first_pass is None and time.monotonic() < deadline and not last.failed():
@@ -319,8 +356,7 @@ def run_plant(build, n, design, window, probes, conformance, tails=False):
             failed = [s for s in stations if s.failed()]
             result["stations_failed"] = len(failed)
             if failed:
-                result["first_failure"] = "".join(failed[0].planner_lines[-6:]) if failed[0].planner_lines else \
-                    "(quiet planner: see its station's logs)"
+                result["first_failure"] = "".join(list(failed[0].planner_lines)[-6:])
             if conformance and design == "domains":
                 result["conformance"] = conform(build, stations)
         finally:
@@ -374,8 +410,12 @@ def main():
                         help="keep the results already in --out and run only the N and designs not there yet")
     args = parser.parse_args()
     build = os.path.abspath(args.build_dir)
-    for tool in ("firmware/hubd/hubd", "firmware/hubctl/hubctl", "firmware/sim/station/hubsim",
-                 "bench/hubrt_bench_heartbeat", "bench/hubrt_bench_echo_latency", "bench/hubrt_bench_tails"):
+    # Only the programs this run starts: --no-probes needs no bench program, and any build with
+    # hubd, hubctl and hubsim runs the plant (a sanitizer build for a check of the bench itself).
+    tools = ["firmware/hubd/hubd", "firmware/hubctl/hubctl", "firmware/sim/station/hubsim"]
+    tools += [] if args.no_probes else ["bench/hubrt_bench_heartbeat", "bench/hubrt_bench_echo_latency"]
+    tools += ["bench/hubrt_bench_tails"] if args.tails else []
+    for tool in tools:
         if not os.access(os.path.join(build, tool), os.X_OK):
             parser.error(f"{build}/{tool} is missing: cmake --build {args.build_dir} --target hubd hubctl hubsim "
                          "bench-programs")
