@@ -250,7 +250,7 @@ def conform(build, stations):
     environment), the other stations keep playing until their turn. One station after the other,
     its five hubs in parallel (--parallel)."""
     names = [name for name, _, _ in HUBS]
-    passed, failures, stops, t0 = 0, [], collections.Counter(), time.monotonic()
+    passed, failures, stops, stopped_alone, t0 = 0, [], collections.Counter(), [], time.monotonic()
     for i, s in enumerate(stations):
         for ahead in stations[i:i + 1 + PLANNER_LOOKAHEAD]:
             ahead.stop_at_round_start.set()
@@ -260,6 +260,8 @@ def conform(build, stations):
         stops[stop] += 1
         if stop != "between rounds":
             progress(f"conformance: station {s.k + 1}'s planner {stop}")
+        if stop == "had stopped":  # a failed step, maybe mid-mission: the suite's results say more
+            stopped_alone.append({"station": s.k, "last_lines": "".join(list(s.planner_lines)[-3:])})
         argv = [f"{build}/firmware/hubctl/hubctl", "conformance", "--parallel", "--domain", str(s.domain)] + [
                 arg for name in names for arg in ("--hub", name)]
         try:
@@ -279,7 +281,8 @@ def conform(build, stations):
                     failing.append(f"{topic}: {line.strip()}")
             failures.append({"station": s.k, "domain": s.domain, "failing": failing, "output": said})
     return {"stations": len(stations), "hubs": len(stations) * len(names), "stations_passed": passed,
-            "failures": failures, "planners_stopped": dict(stops), "seconds": round(time.monotonic() - t0, 1)}
+            "failures": failures, "planners_stopped": dict(stops),
+            "planners_that_had_stopped": stopped_alone, "seconds": round(time.monotonic() - t0, 1)}
 
 
 def run_plant(build, n, design, window, probes, conformance, tails=False):
