@@ -119,7 +119,8 @@ class Station:
         # command step; the start of a round, where conform() stops it). The last lines are kept.
         self.planner_lines = collections.deque(maxlen=40)
         self.stop_at_round_start = threading.Event()
-        threading.Thread(target=self._read_planner, daemon=True).start()
+        self._planner_reader = threading.Thread(target=self._read_planner, daemon=True)
+        self._planner_reader.start()
 
     def _start(self, name, argv):
         log = open(os.path.join(self.folder, f"{name}.log"), "w")
@@ -140,8 +141,10 @@ class Station:
         """Waits (at most timeout_s) for the planner, armed with stop_at_round_start, to stop at the
         start of a round; past that, stops it where it is. Says which."""
         self.stop_at_round_start.set()
-        if self.planner.poll() is not None and not self.planner_lines_say_interrupted():
-            return "had stopped"  # a failed step: its lines say which
+        if self.planner.poll() is not None:
+            self._planner_reader.join(timeout=5)  # its last lines, read to the end of its output
+            if not self.planner_lines_say_interrupted():
+                return "had stopped"  # a failed step: its lines say which
         try:
             self.planner.wait(timeout=timeout_s)
             return "between rounds"

@@ -191,12 +191,8 @@ TEST_F(HubctlSendTest, AnAcknowledgementPastTheLifespanIsReported) {
   await_readers(1);
   ChildProcess send = start_send({"--count", "2", "--rate", "0.2", "--wait", "1", "--timeout", "60"});
   // 60 s: start-up under sanitizers on a loaded machine.
-  const auto deadline = std::chrono::steady_clock::now() + seconds(60);
-  while (reader.stdout_text().find("pressure_drop") == std::string::npos &&
-         std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ASSERT_NE(reader.stdout_text().find("pressure_drop"), std::string::npos) << send.stdout_text();
+  ASSERT_TRUE(reader.wait_for_output("pressure_drop", seconds(60)))
+      << reader.stdout_text() << reader.stderr_text() << send.stdout_text() << send.stderr_text();
   ASSERT_TRUE(reader.signal(SIGSTOP));
   std::this_thread::sleep_for(seconds(8));
   EXPECT_TRUE(reader.signal(SIGCONT));

@@ -155,17 +155,11 @@ int run_send(const SendOptions& options) {
     fmt::print(stderr, "hubctl send: sent {} sample(s) but {}\n", sent, acked.error().message);
     return kExitFailed;
   }
-  const std::uint32_t readers_matched = matched.is_ok() ? matched.value() : 0;
-  const Duration ack_delay = std::chrono::steady_clock::now() - last_write;
-  if (const auto late = late_acknowledgement(ack_delay, options.lifespan_ms)) {
-    fmt::print(stderr, "hubctl send: {}\n", *late);
-    if (!options.quiet)
-      fmt::print("sent {} sample(s) to {} reader(s); acknowledged past the LIFESPAN\n", sent,
-                 readers_matched);
-    return kExitOk;
-  }
+  const auto late = late_acknowledgement(std::chrono::steady_clock::now() - last_write, options.lifespan_ms);
+  if (late) fmt::print(stderr, "hubctl send: {}\n", *late);
   if (!options.quiet)
-    fmt::print("sent {} sample(s) to {} reader(s); all acknowledged\n", sent, readers_matched);
+    fmt::print("sent {} sample(s) to {} reader(s); {}\n", sent, matched.is_ok() ? matched.value() : 0,
+               late ? "acknowledged past the LIFESPAN" : "all acknowledged");
   return kExitOk;
 }
 
