@@ -10,27 +10,28 @@ if(NOT BINARY OR NOT NM OR NOT READELF)
 endif()
 include(${CMAKE_CURRENT_LIST_DIR}/program_files.cmake)
 hubrt_program_files("${BINARY}" "${READELF}" files)
-set(symbols "")
+# Each file's listing is searched on its own: a sanitizer build's hubd and its libraries list ~32 MB
+# of symbols, and gathering them into one string before searching took most of this check's time.
+# string(FIND), not a regular expression: REGEX MATCHALL with a line pattern over such a listing
+# took over a minute on a loaded machine.
 foreach(file IN LISTS files)
   execute_process(COMMAND "${NM}" --demangle --defined-only "${file}"
-                  OUTPUT_VARIABLE file_symbols ERROR_VARIABLE errors RESULT_VARIABLE status)
+                  OUTPUT_VARIABLE symbols ERROR_VARIABLE errors RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "${NM} ${file} failed: ${errors}")
   endif()
-  string(APPEND symbols "${file}:\n${file_symbols}")
-endforeach()
-# string(FIND), not a regular expression over the whole listing: a sanitizer build's hubd has
-# ~56,000 symbols, and REGEX MATCHALL with a line pattern took over a minute on a loaded machine.
-foreach(namespace "hubrt::hal::fake::" "hubrt::sim::")
-  string(FIND "${symbols}" "${namespace}" at)
-  if(NOT at EQUAL -1)
-    math(EXPR from "${at} - 60")
-    if(from LESS 0)
-      set(from 0)
+  foreach(namespace "hubrt::hal::fake::" "hubrt::sim::")
+    string(FIND "${symbols}" "${namespace}" at)
+    if(NOT at EQUAL -1)
+      math(EXPR from "${at} - 60")
+      if(from LESS 0)
+        set(from 0)
+      endif()
+      string(SUBSTRING "${symbols}" ${from} 200 around)
+      message(FATAL_ERROR "${BINARY} links code of the fake backend or the simulators (${namespace}) in "
+                          "${file}, e.g. near: ${around}")
     endif()
-    string(SUBSTRING "${symbols}" ${from} 200 around)
-    message(FATAL_ERROR "${BINARY} links code of the fake backend or the simulators (${namespace}), e.g. near: ${around}")
-  endif()
+  endforeach()
 endforeach()
 list(LENGTH files count)
 message(STATUS "${BINARY} (${count} files with its own libraries): no symbol of hubrt::hal::fake or hubrt::sim")
