@@ -232,7 +232,7 @@ function(hubrt_add_test name)
   if(NOT HUBRT_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(A "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(A "PROCESS_PER_TEST" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT A_LABELS)
     set(A_LABELS unit)
   endif()
@@ -270,12 +270,6 @@ function(hubrt_add_test name)
   endif()
   hubrt_target_defaults(${name})
   target_compile_options(${name} PRIVATE ${_hubrt_test_san_flags})
-  # Labels and timeout are applied by a small script included after the discovered tests:
-  # gtest_discover_tests' PROPERTIES loses the separators of a list value in PRE_TEST mode.
-  gtest_discover_tests(${name}
-    DISCOVERY_MODE PRE_TEST
-    DISCOVERY_TIMEOUT 60
-    TEST_LIST ${name}_TESTS)
   # HUBRT_TEST_ENVIRONMENT (a list of NAME=value, set by the project: tests/new_hub) goes into every
   # test's environment.
   set(_env ${HUBRT_TEST_ENVIRONMENT})
@@ -285,6 +279,38 @@ function(hubrt_add_test name)
     list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " _emulator)
     list(APPEND _env "HUBRT_TARGET_EMULATOR=${_emulator}")
   endif()
+  # A unit or threaded test program (no integration, conformance, kernel or slow label) is one CTest
+  # test: all its tests in one process. Starting a process per test cost 0.12-0.17 CPU-s each under
+  # ASan, 35-50 times the test itself: 1363 such tests took 341 CPU-s one process each and 73 in
+  # their 91 programs (docs/ci.md, 2026-11-30). GoogleTest's brief output keeps only what failed.
+  # Programs whose tests start hubd, hubctl or a station keep a CTest test per test: those are the
+  # slow ones, scheduled longest first across the cores. PROCESS_PER_TEST keeps that for a program
+  # whose tests need a process each (one process-wide Cyclone log sink, the environment).
+  set(_whole TRUE)
+  foreach(_label IN LISTS A_LABELS)
+    if(NOT _label MATCHES "^(unit|threaded)$")
+      set(_whole FALSE)
+    endif()
+  endforeach()
+  if(A_PROCESS_PER_TEST)
+    set(_whole FALSE)
+  endif()
+  if(_whole)
+    add_test(NAME ${name} COMMAND ${name} --gtest_brief=1)
+    # The program's tests together, under TSan or qemu-user 5-10 times slower than here.
+    math(EXPR _whole_timeout "${A_TIMEOUT} * 3")
+    set_tests_properties(${name} PROPERTIES LABELS "${A_LABELS}" TIMEOUT ${_whole_timeout})
+    if(_env)
+      set_tests_properties(${name} PROPERTIES ENVIRONMENT "${_env}")
+    endif()
+    return()
+  endif()
+  # Labels and timeout are applied by a small script included after the discovered tests:
+  # gtest_discover_tests' PROPERTIES loses the separators of a list value in PRE_TEST mode.
+  gtest_discover_tests(${name}
+    DISCOVERY_MODE PRE_TEST
+    DISCOVERY_TIMEOUT 60
+    TEST_LIST ${name}_TESTS)
   set(_cross_env "")
   if(_env)
     list(JOIN _env ";" _env_text)

@@ -3,7 +3,8 @@
 
 usage: ctest_programs.py BUILD_DIR LABEL_REGEX
 
-ctest lists gtest cases one by one (gtest_discover_tests: "PROGRAM --gtest_filter=CASE ..."); the
+ctest lists gtest cases one by one (gtest_discover_tests: "PROGRAM --gtest_filter=CASE ..."), or a
+unit program as one test ("PROGRAM --gtest_brief=1", toolchain/cmake/HubrtTargets.cmake); the
 kernel tier runs each program once with all its cases, so only the distinct programs matter.
 Tests that are not gtest cases (e.g. "cmake -P script") depend on their ctest working directory
 and often write into the build folder, which is read-only in the guest: they are left out, and
@@ -22,7 +23,7 @@ def main() -> int:
     programs = []
     for test in json.loads(listing.stdout).get("tests", []):
         command = test.get("command") or []
-        if not any(arg.startswith("--gtest_filter=") for arg in command[1:]):
+        if not any(arg.startswith(("--gtest_filter=", "--gtest_brief=")) for arg in command[1:]):
             print(f"not a gtest case, left out: {test.get('name')}", file=sys.stderr)
             continue
         if command[0] not in programs:
