@@ -116,11 +116,13 @@ cross-test: deps
 
 # docs/safety.md's time-to-safe table (issue 29): the tests that measure it write their rows into
 # build/host-asan/time-to-safe/, the net tier its partition rows (needs root), then the generator.
-SAFETY_TESTS = hubrt_clock_step_test|hubrt_rsp_ecu_device_vanish_test|hubrt_hubd_stale_after_stop_test|hubrt_hubd_heartbeat_holds_test|hubrt_hubd_planner_gone_test
+# CTest names: the two unit programs are one test each; the integration programs' tests are named
+# after their suites (a program's own name matched none of them, so this ran only those two).
+SAFETY_TESTS = ^(hubrt_clock_step_test|hubrt_rsp_ecu_device_vanish_test)$$|/(HubdStaleAfterStopTest|HubdHeartbeatHoldsTest|HubdPlannerGoneTest)\.
 safety-table: deps
 	@cmake --preset host-asan >/dev/null
 	@$(CMAKE_BUILD) host-asan -j$(JOBS)
-	@ctest --preset host-asan -R '^($(SAFETY_TESTS))$$'
+	@ctest --preset host-asan --no-tests=error -R '$(SAFETY_TESTS)'
 	@tests/net/run --build-dir build/host-asan
 	@toolchain/time-to-safe-table --build-dir build/host-asan
 
