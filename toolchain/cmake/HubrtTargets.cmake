@@ -281,8 +281,9 @@ function(hubrt_add_test name)
   endif()
   # A unit or threaded test program (no integration, conformance, kernel or slow label) is one CTest
   # test: all its tests in one process. Starting a process per test cost 0.12-0.17 CPU-s each under
-  # ASan, 35-50 times the test itself: 1363 such tests took 341 CPU-s one process each and 73 in
-  # their 91 programs (docs/ci.md, 2026-11-30). GoogleTest's brief output keeps only what failed.
+  # ASan, 35-50 times a unit test itself: the 1363 tests of 91 programs whose every test took under
+  # 2.5 s took 341 CPU-s one process each and 73 a process per program (docs/ci.md, 2026-11-30).
+  # GoogleTest's brief output keeps only what failed.
   # Programs whose tests start hubd, hubctl or a station keep a CTest test per test: those are the
   # slow ones, scheduled longest first across the cores. PROCESS_PER_TEST keeps that for a program
   # whose tests need a process each (one process-wide Cyclone log sink, the environment).
