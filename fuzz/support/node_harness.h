@@ -32,7 +32,7 @@ class OneShotSource final : public runtime::CommandSource<Command> {
   void post(const Command* command) noexcept { pending_ = command; }
   // Built in-process: no source timestamp, as old as its arrival.
   Result<runtime::ReceivedCommand<Command>> next() noexcept override {
-    return runtime::ReceivedCommand<Command>{std::exchange(pending_, nullptr), std::nullopt};
+    return runtime::ReceivedCommand<Command>{std::exchange(pending_, nullptr), std::nullopt, std::nullopt};
   }
 
  private:

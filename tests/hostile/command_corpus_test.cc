@@ -83,7 +83,7 @@ class OneCommandSource final : public CommandSource<C> {
  public:
   void post(const C& command) { pending_ = &command; }
   Result<ReceivedCommand<C>> next() noexcept override {
-    return ReceivedCommand<C>{std::exchange(pending_, nullptr), std::nullopt};
+    return ReceivedCommand<C>{std::exchange(pending_, nullptr), std::nullopt, std::nullopt};
   }
 
  private:

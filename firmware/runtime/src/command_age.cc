@@ -7,7 +7,8 @@ JudgedAge CommandAgeJudge::judge(const CommandTimes& times) noexcept {
   judged.written = times.taken.mono;
   const bool stamped = times.source.has_value() && times.source->ns_since_epoch > 0;
   if (stamped) {
-    judged.offset = Duration(times.taken.wall.ns_since_epoch - times.source->ns_since_epoch);
+    const WallTime hub_wall = times.take_wall.value_or(times.taken.wall);
+    judged.offset = Duration(hub_wall.ns_since_epoch - times.source->ns_since_epoch);
     offset_seen_ = true;
     last_offset_ = judged.offset;
     const auto magnitude = [](Duration d) { return d < Duration::zero() ? -d : d; };

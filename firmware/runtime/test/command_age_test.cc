@@ -29,7 +29,9 @@ TEST(CommandAgeJudge, JudgesByTheSourceStampAgainstTheHubsWallClock) {
   ManualClock clock;
   CommandAgeJudge judge(kTimeout, kTolerance);
   const Instant now = clock.now();
-  const auto judged = [&](Duration age) { return judge.judge(CommandTimes{minus(now.wall, age), now}); };
+  const auto judged = [&](Duration age) {
+    return judge.judge(CommandTimes{minus(now.wall, age), now, std::nullopt});
+  };
 
   const JudgedAge young = judged(milliseconds(900));
   EXPECT_EQ(young.verdict, AgeVerdict::kYoung);
@@ -46,24 +48,53 @@ TEST(CommandAgeJudge, JudgesByTheSourceStampAgainstTheHubsWallClock) {
   EXPECT_EQ(judge.largest_offset(), seconds(10)) << "the largest offset in magnitude, with its sign";
   EXPECT_EQ(judge.last_offset(), -seconds(10));
 
-  EXPECT_EQ(judge.judge(CommandTimes{WallTime{0}, now}).verdict, AgeVerdict::kUnstamped)
+  EXPECT_EQ(judge.judge(CommandTimes{WallTime{0}, now, std::nullopt}).verdict, AgeVerdict::kUnstamped)
       << "a sample without a source timestamp cannot be judged";
-  EXPECT_EQ(judge.judge(CommandTimes{std::nullopt, now}).verdict, AgeVerdict::kYoung)
+  EXPECT_EQ(judge.judge(CommandTimes{std::nullopt, now, std::nullopt}).verdict, AgeVerdict::kYoung)
       << "a command built in-process is as old as its arrival";
+}
+
+// The cycle reads its clocks, then takes; a thread held between the two (a loaded board, the CI
+// kernel VM: 103 ms once) takes commands written after its reading. Judged against the reading the
+// source made at the take, such a command is young; against the cycle's, it looked 0.1 s ahead.
+TEST(CommandAgeJudge, JudgesAgainstTheHubsWallClockAtTheTakeNotTheCyclesEarlierReading) {
+  ManualClock clock;
+  CommandAgeJudge judge(kTimeout, kTolerance);
+  const Instant cycle = clock.now();
+  clock.advance(milliseconds(103));  // the cycle thread is preempted
+  const WallTime written = minus(clock.now().wall, milliseconds(1));
+  const WallTime take_wall = clock.now().wall;
+
+  EXPECT_EQ(judge.judge(CommandTimes{written, cycle, std::nullopt}).verdict, AgeVerdict::kFuture)
+      << "judged against the cycle's reading the command looks 102 ms ahead";
+  const JudgedAge at_take = judge.judge(CommandTimes{written, cycle, take_wall});
+  EXPECT_EQ(at_take.verdict, AgeVerdict::kYoung);
+  EXPECT_EQ(at_take.offset, milliseconds(1));
+  EXPECT_EQ(at_take.written, cycle.mono - milliseconds(1))
+      << "freshness counts from the cycle's reading minus the age, never from after it";
+
+  // A command 998 ms old at the cycle's reading is 1.101 s old at its take: stale.
+  EXPECT_EQ(judge.judge(CommandTimes{minus(cycle.wall, milliseconds(998)), cycle, take_wall}).verdict,
+            AgeVerdict::kStale);
+  // A stamp ahead of the take by more than the tolerance is still a clock that disagrees.
+  EXPECT_EQ(judge.judge(CommandTimes{minus(take_wall, -milliseconds(51)), cycle, take_wall}).verdict,
+            AgeVerdict::kFuture);
 }
 
 TEST(CommandAgeJudge, UnsyncedClocksJudgeNoAgeButStillDiscardWhatQueuedInAStall) {
   ManualClock clock;
   CommandAgeJudge judge(kTimeout, std::nullopt);
   const Instant now = clock.now();
-  EXPECT_EQ(judge.judge(CommandTimes{minus(now.wall, seconds(10)), now}).verdict, AgeVerdict::kYoung);
-  EXPECT_EQ(judge.judge(CommandTimes{minus(now.wall, -seconds(10)), now}).written, now.mono);
+  EXPECT_EQ(judge.judge(CommandTimes{minus(now.wall, seconds(10)), now, std::nullopt}).verdict,
+            AgeVerdict::kYoung);
+  EXPECT_EQ(judge.judge(CommandTimes{minus(now.wall, -seconds(10)), now, std::nullopt}).written, now.mono);
   EXPECT_TRUE(judge.offset_seen()) << "the skew is still shown";
 
   judge.begin_discarding(now.mono + milliseconds(100));
-  EXPECT_EQ(judge.judge(CommandTimes{now.wall, now}).verdict, AgeVerdict::kQueued);
+  EXPECT_EQ(judge.judge(CommandTimes{now.wall, now, std::nullopt}).verdict, AgeVerdict::kQueued);
   clock.advance(milliseconds(100));
-  EXPECT_EQ(judge.judge(CommandTimes{clock.now().wall, clock.now()}).verdict, AgeVerdict::kYoung)
+  EXPECT_EQ(judge.judge(CommandTimes{clock.now().wall, clock.now(), std::nullopt}).verdict,
+            AgeVerdict::kYoung)
       << "a command taken once the hub caught up acts";
 }
 
@@ -152,6 +183,21 @@ TEST_F(CommandAgeNodeTest, APlannerTenSecondsAheadIsRejectedWithTheReason) {
   step();
   EXPECT_EQ(node_->lifecycle().state(), Lifecycle::kOperational);
   EXPECT_TRUE(world_.open);
+}
+
+TEST_F(CommandAgeNodeTest, ACommandWrittenWhileTheCycleWasHeldActsAsJustWritten) {
+  make_node(kTolerance);
+  const Instant cycle = clock_.now();
+  clock_.advance(milliseconds(103));  // held between the cycle's reading and the take
+  OwnedValveCommand open;
+  source_.push(open, clock_.now().wall, clock_.now().wall);
+  node_->step(cycle);
+  EXPECT_EQ(node_->rejected(), 0u);
+  EXPECT_FALSE(error_has("future")) << "no clock disagreement reported";
+  EXPECT_EQ(node_->lifecycle().state(), Lifecycle::kOperational);
+  EXPECT_TRUE(world_.open);
+  EXPECT_TRUE(state().fresh_msg);
+  EXPECT_FLOAT_EQ(state().t_plus, 0.0f);
 }
 
 TEST_F(CommandAgeNodeTest, WithUnsyncedClocksSkewedPlannersActAsOnArrival) {

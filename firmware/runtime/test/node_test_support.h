@@ -41,11 +41,14 @@ class QueueSource final : public CommandSource<ValveCommand> {
  public:
   // Copies the command and builds its wire form now, so that next() never allocates.
   void push(const OwnedValveCommand& command) { push(command, std::nullopt); }
-  // With the source timestamp its writer would have given it (DDS: the writer's wall clock).
-  void push(const OwnedValveCommand& command, std::optional<WallTime> written) {
+  // With the source timestamp its writer would have given it (DDS: the writer's wall clock) and
+  // the hub's wall clock at its take, as a source that reads a clock reports it.
+  void push(const OwnedValveCommand& command, std::optional<WallTime> written,
+            std::optional<WallTime> take_wall = std::nullopt) {
     auto owned = std::make_unique<OwnedValveCommand>(command);
     wires_.push_back(owned->wire());
     stamps_.push_back(written);
+    take_walls_.push_back(take_wall);
     queue_.push_back(std::move(owned));
   }
   void fail_next() { fail_next_ = true; }
@@ -65,7 +68,9 @@ class QueueSource final : public CommandSource<ValveCommand> {
     wires_.pop_front();
     const std::optional<WallTime> stamp = stamps_.front();
     stamps_.pop_front();
-    return ReceivedCommand<ValveCommand>{&wire_, stamp};
+    const std::optional<WallTime> take_wall = take_walls_.front();
+    take_walls_.pop_front();
+    return ReceivedCommand<ValveCommand>{&wire_, stamp, take_wall};
   }
   [[nodiscard]] std::size_t pending() const { return queue_.size(); }
 
@@ -73,6 +78,7 @@ class QueueSource final : public CommandSource<ValveCommand> {
   std::deque<std::unique_ptr<OwnedValveCommand>> queue_;
   std::deque<ValveCommand> wires_;
   std::deque<std::optional<WallTime>> stamps_;
+  std::deque<std::optional<WallTime>> take_walls_;
   std::unique_ptr<OwnedValveCommand> current_;
   ValveCommand wire_{};
   bool fail_next_ = false;

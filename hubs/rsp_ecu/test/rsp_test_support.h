@@ -55,7 +55,7 @@ class QueueSource final : public runtime::CommandSource<OwnedCommand::Wire> {
     if (commands_.empty()) return runtime::ReceivedCommand<OwnedCommand::Wire>{};
     current_ = commands_.front();
     commands_.pop_front();
-    return runtime::ReceivedCommand<OwnedCommand::Wire>{&current_.wire(), std::nullopt};
+    return runtime::ReceivedCommand<OwnedCommand::Wire>{&current_.wire(), std::nullopt, std::nullopt};
   }
 
  private:

@@ -30,7 +30,7 @@ class RepeatingSource final : public runtime::CommandSource<Wire> {
       return runtime::ReceivedCommand<Wire>{};
     }
     given_ = true;
-    return runtime::ReceivedCommand<Wire>{&command_.wire(), std::nullopt};
+    return runtime::ReceivedCommand<Wire>{&command_.wire(), std::nullopt, std::nullopt};
   }
 
  private:

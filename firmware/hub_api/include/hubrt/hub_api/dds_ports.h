@@ -8,6 +8,7 @@
 #include <memory>
 #include <utility>
 
+#include "hubrt/base/time.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
 #include "hubrt/dds/writer.h"
@@ -25,15 +26,18 @@ namespace hubrt::hub_api {
 inline constexpr std::int32_t kCommandHistoryDepth = 1;
 
 // Thread-safety: next() on the cycle thread only.
-// `arrived`: set (release) by the reader's data-available listener on Cyclone's thread when a
-// command arrives; may be null (then may_have_command() always says true).
+// `clock`: read right after each take that returns a command (ReceivedCommand::take_wall); must
+// outlive the source. `arrived`: set (release) by the reader's data-available listener on
+// Cyclone's thread when a command arrives; may be null (then may_have_command() always says true).
 template <dds::TopicType Command>
 class DdsCommandSource final : public runtime::CommandSource<Command> {
  public:
-  explicit DdsCommandSource(dds::Reader<Command> reader, std::shared_ptr<std::atomic<bool>> arrived = nullptr)
-      : reader_(std::move(reader)), arrived_(std::move(arrived)) {}
+  DdsCommandSource(dds::Reader<Command> reader, const Clock& clock,
+                   std::shared_ptr<std::atomic<bool>> arrived = nullptr)
+      : reader_(std::move(reader)), clock_(&clock), arrived_(std::move(arrived)) {}
 
-  // Each command comes with its DDS source timestamp (the writer's clock: SampleInfo::source_time).
+  // Each command comes with its DDS source timestamp (the writer's clock: SampleInfo::source_time)
+  // and the hub's wall clock at the take, what its age is judged against (command_age.h).
   Result<runtime::ReceivedCommand<Command>> next() noexcept override {
     // Nothing arrived since the last take found the reader empty: no take (Cyclone's dds_take
     // locks the reader and its history cache to find nothing, ~650 instructions every periodic
@@ -51,7 +55,7 @@ class DdsCommandSource final : public runtime::CommandSource<Command> {
     }
     if (!taken.is_ok()) return taken.status();
     if (!taken.value()) return runtime::ReceivedCommand<Command>{};
-    return runtime::ReceivedCommand<Command>{&sample_.get(), info.source_time};
+    return runtime::ReceivedCommand<Command>{&sample_.get(), info.source_time, clock_->now().wall};
   }
   [[nodiscard]] bool may_have_command() const noexcept override {
     return !arrived_ || arrived_->load(std::memory_order_acquire);
@@ -60,6 +64,7 @@ class DdsCommandSource final : public runtime::CommandSource<Command> {
 
  private:
   dds::Reader<Command> reader_;
+  const Clock* clock_;
   dds::Sample<Command> sample_;
   std::shared_ptr<std::atomic<bool>> arrived_;
 };

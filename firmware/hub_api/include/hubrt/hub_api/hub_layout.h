@@ -32,24 +32,27 @@
 namespace hubrt::hub_api {
 
 // Hands one fragment per step to a node, with the source timestamp of the hub command it came
-// from: the node judges its age as the hub-level node judged the hub command's.
+// from and the hub's wall clock at that command's take: the node judges its age as the hub-level
+// node judged the hub command's.
 template <class Command>
 class MailboxSource final : public runtime::CommandSource<Command> {
  public:
-  void post(const Command& fragment, std::optional<WallTime> source_time) noexcept {
+  void post(const Command& fragment, const runtime::CommandTimes& times) noexcept {
     pending_ = fragment;
-    source_time_ = source_time;
+    source_time_ = times.source;
+    take_wall_ = times.take_wall;
     has_pending_ = true;
   }
   Result<runtime::ReceivedCommand<Command>> next() noexcept override {
     if (!has_pending_) return runtime::ReceivedCommand<Command>{};
     has_pending_ = false;
-    return runtime::ReceivedCommand<Command>{&pending_, source_time_};
+    return runtime::ReceivedCommand<Command>{&pending_, source_time_, take_wall_};
   }
 
  private:
   Command pending_{};
   std::optional<WallTime> source_time_;
+  std::optional<WallTime> take_wall_;
   bool has_pending_ = false;
 };
 
@@ -66,8 +69,8 @@ namespace detail {
 class Route {
  public:
   virtual ~Route() = default;
-  // Posts the node's fragment of `hub_command`, written at `source_time`, to the node.
-  virtual void distribute(const void* hub_command, std::optional<WallTime> source_time) noexcept = 0;
+  // Posts the node's fragment of `hub_command`, with the hub command's times, to the node.
+  virtual void distribute(const void* hub_command, const runtime::CommandTimes& times) noexcept = 0;
   // Copies the node's State into its field of `hub_state` (pointers keep pointing into the node).
   virtual void collect(void* hub_state) const noexcept = 0;
 };
@@ -84,13 +87,13 @@ class NodeRoute final : public Route {
   MailboxSource<Command>& source() noexcept { return source_; }
   CollectedSink<State>& sink() noexcept { return sink_; }
 
-  void distribute(const void* hub_command, std::optional<WallTime> source_time) noexcept override {
+  void distribute(const void* hub_command, const runtime::CommandTimes& times) noexcept override {
     Command fragment{};
     std::memcpy(&fragment, static_cast<const std::byte*>(hub_command) + command_offset_, sizeof fragment);
     if (msgs::typed::view(fragment.target_type).empty()) msgs::typed::assign(fragment.target_type, type_);
     if (msgs::typed::view(fragment.target_name).empty())
       msgs::typed::assign(fragment.target_name, node_name_);
-    source_.post(fragment, source_time);
+    source_.post(fragment, times);
   }
   void collect(void* hub_state) const noexcept override {
     std::memcpy(static_cast<std::byte*>(hub_state) + state_offset_, &node_->state().wire(), sizeof(State));
@@ -118,7 +121,7 @@ class HubLevelLogic {
   explicit HubLevelLogic(std::vector<std::unique_ptr<Route>>& routes) : routes_(&routes) {}
 
   // The hub-level node's tracker and its last valid command's times: fragments go out only in
-  // steps where a hub command arrived, stamped with its source timestamp.
+  // steps where a hub command arrived, with its source timestamp and the time of its take.
   void watch(const runtime::CommandTracker& tracker, const runtime::CommandTimes& last_valid) noexcept {
     tracker_ = &tracker;
     last_valid_ = &last_valid;
@@ -134,8 +137,9 @@ class HubLevelLogic {
   void update(const Command* in_force, Time now) noexcept {
     if (in_force == nullptr) return;
     if (tracker_ != nullptr && tracker_->last_taken() != now) return;
-    const std::optional<WallTime> source = last_valid_ != nullptr ? last_valid_->source : std::nullopt;
-    for (const auto& route : *routes_) route->distribute(&in_force->wire(), source);
+    static constexpr runtime::CommandTimes kUnknown{};
+    const runtime::CommandTimes& times = last_valid_ != nullptr ? *last_valid_ : kUnknown;
+    for (const auto& route : *routes_) route->distribute(&in_force->wire(), times);
   }
   void reset() noexcept {}
   void report(State& state, runtime::ErrorList& /*errors*/, Time /*now*/) noexcept {
@@ -258,7 +262,8 @@ class NodeWiring {
                                              msgs::type_info_of<HubState>(), dds::Qos::ros2_default(),
                                              false));
     wiring.stage_ = std::make_unique<detail::HubLayoutStage<HubTypes>>(
-        std::move(*command_topic), std::move(*state_topic), DdsCommandSource<HubCommand>(std::move(*reader)),
+        std::move(*command_topic), std::move(*state_topic),
+        DdsCommandSource<HubCommand>(std::move(*reader), context.clock),
         DdsStateSink<HubState>(std::move(*writer)));
     return wiring;
   }

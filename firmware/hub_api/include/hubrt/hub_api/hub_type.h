@@ -41,7 +41,9 @@ struct HubContext {
   const dds::Participant& participant;
   runtime::Waker waker;  // wakes the cycle when a command arrives
   std::shared_ptr<spdlog::logger> log;
-  const Clock& clock;  // for opening devices at start; the cycle passes time in afterwards
+  // For opening devices at start and for the command sources' reading at each take (outlives the
+  // built hub); the logic gets its time from the cycle.
+  const Clock& clock;
   // Other hubs' States, by the names of the hub file's `subscriptions:` (outlive the built hub).
   Subscriptions& subscriptions;
   // The hub's black box, or null: the command readers and State writers show it their samples

@@ -75,9 +75,10 @@ Expected<void> add_node_type_oriented(const HubContext& context, runtime::Hub& h
       context.black_box, node_state_topic(context.config.ros_namespace, context.config.name, node.name),
       msgs::type_info_of<State>(), dds::Qos::ros2_default(), false));
 
-  auto ports = std::make_shared<NodeTypePorts<Logic>>(NodeTypePorts<Logic>{
-      std::move(*command_topic), std::move(*state_topic),
-      DdsCommandSource<Command>(std::move(*reader), arrived), DdsStateSink<State>(std::move(*writer))});
+  auto ports = std::make_shared<NodeTypePorts<Logic>>(
+      NodeTypePorts<Logic>{std::move(*command_topic), std::move(*state_topic),
+                           DdsCommandSource<Command>(std::move(*reader), context.clock, arrived),
+                           DdsStateSink<State>(std::move(*writer))});
   runtime::NodeOptions options;
   options.name = node.name;
   options.command_timeout = context.config.command_timeout;

@@ -5,6 +5,11 @@
 //
 //   age = hub wall clock when the cycle takes the command − the command's source timestamp
 //
+// "When it takes the command" is read by the source right after the take where it can
+// (ReceivedCommand::take_wall), not the cycle's reading from before it began taking: a cycle
+// thread preempted between the two would otherwise judge a command written meanwhile as stamped
+// in the future, and one written just inside the timeout as younger than it is.
+//
 //   - age > command timeout: stale. It never takes effect and never feeds the watchdog.
 //   - age < −tolerance (stamped in the future beyond the clocks' agreed accuracy): rejected, the
 //     skew named in error_list. Within the tolerance a future stamp counts as age 0.
@@ -38,7 +43,9 @@ inline constexpr Duration kDefaultClockTolerance = std::chrono::milliseconds(50)
 // recorder of the command path keeps.
 struct CommandTimes {
   std::optional<WallTime> source;  // the writer's clock (ReceivedCommand::source_time)
-  Instant taken;                   // the hub's clocks when the cycle took it from its source
+  Instant taken;                   // the hub's clocks when the cycle began taking from its source
+  // The hub's wall clock right after the take (ReceivedCommand::take_wall); absent: taken.wall.
+  std::optional<WallTime> take_wall;
 };
 
 enum class AgeVerdict : std::uint8_t {
@@ -51,11 +58,11 @@ enum class AgeVerdict : std::uint8_t {
 
 struct JudgedAge {
   AgeVerdict verdict = AgeVerdict::kYoung;
-  // When the command was written, on the hub's monotonic clock (taken − age): what its freshness
-  // and t_plus count from.
+  // When the command was written, on the hub's monotonic clock (taken.mono − age, never later
+  // than taken.mono): what its freshness and t_plus count from.
   Time written{};
-  // Hub wall clock − source timestamp, as seen (negative: stamped in the future); 0 when the
-  // command has no source timestamp. Includes the transport's latency.
+  // Hub wall clock at the take − source timestamp, as seen (negative: stamped in the future); 0
+  // when the command has no source timestamp. Includes the transport's latency.
   Duration offset{0};
 };
 

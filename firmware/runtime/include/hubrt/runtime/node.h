@@ -345,7 +345,7 @@ class Node final : public NodeBase {
       const CommandWire* wire = next.value().command;
       if (wire == nullptr) break;
       const Command command(*wire);
-      const CommandTimes times{next.value().source_time, now};
+      const CommandTimes times{next.value().source_time, now, next.value().take_wall};
       const CommandOutcome outcome = intake(command, times);
       if (options_.command_observer != nullptr)
         options_.command_observer->on_command(options_.name, wire, times, outcome);

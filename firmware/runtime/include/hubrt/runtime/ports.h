@@ -9,7 +9,8 @@
 
 namespace hubrt::runtime {
 
-// One command as its source hands it over: the command and when its writer wrote it.
+// One command as its source hands it over: the command, when its writer wrote it and, from a
+// source that reads a clock, when it was taken.
 template <class Command>
 struct ReceivedCommand {
   // nullptr when none is pending. The pointee stays valid until the source's next call.
@@ -19,6 +20,11 @@ struct ReceivedCommand {
   // from it (command_age.h). Absent for a command built in this process (tests, fuzz harnesses):
   // such a command is as old as its arrival.
   std::optional<WallTime> source_time;
+  // The hub's wall clock read by the source just after the take (DdsCommandSource given a clock).
+  // The cycle reads its clocks before it starts taking; a cycle thread held in between (a loaded
+  // board preempting it for 100 ms) takes commands written after that reading, which against it
+  // would look stamped in the future. Absent: the cycle's reading is the time of the take.
+  std::optional<WallTime> take_wall;
 };
 
 // Thread-safety: called only from the cycle thread.
