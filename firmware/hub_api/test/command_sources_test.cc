@@ -1,8 +1,8 @@
-// The command sources of both layouts hand each command over with the writer's source timestamp and the hub's
-// wall clock read at the take (ports.h, ReceivedCommand::take_wall), so that a command written
-// while the cycle thread was held between reading its clocks and taking is judged young, not
-// "stamped in the future" (command_age.h). The clocks here are manual: the planner stamps its
-// command from the same ManualClock, after the cycle's reading.
+// The command sources of both layouts hand each command over with the writer's source timestamp
+// and the hub's wall clock read at the take (ports.h, ReceivedCommand::take_wall), so that a
+// command written while the cycle thread was held between reading its clocks and taking is judged
+// young, not "stamped in the future" (command_age.h). The clocks here are manual: the planner
+// stamps its command from the same ManualClock, after the cycle's reading.
 #include <thread>
 
 #include <gtest/gtest.h>
