@@ -12,18 +12,18 @@
 namespace hubrt::packaging {
 namespace {
 
-const std::filesystem::path kSource = HUBRT_SOURCE_DIR;
+const std::filesystem::path kSourceDir = HUBRT_SOURCE_DIR;
 
 TEST(DeployGuide, WiringTablesMatchTheBoardFiles) {
   std::vector<hal::BoardConfig> boards;
-  for (const auto& entry : std::filesystem::directory_iterator(kSource / "boards")) {
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir / "boards")) {
     if (entry.path().extension() != ".yaml") continue;
     auto board = hal::load_board(entry.path().string());
     ASSERT_TRUE(board) << board.error().message;
     boards.push_back(std::move(*board));
   }
   ASSERT_FALSE(boards.empty());
-  const std::filesystem::path guide = kSource / "docs" / "deploy.md";
+  const std::filesystem::path guide = kSourceDir / "docs" / "deploy.md";
   std::ifstream in(guide, std::ios::binary);
   ASSERT_TRUE(in) << "cannot read " << guide;
   const std::string document((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

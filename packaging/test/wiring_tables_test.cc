@@ -7,7 +7,7 @@
 namespace hubrt::packaging {
 namespace {
 
-hal::BoardConfig board(const std::string& text) {
+hal::BoardConfig loaded_board(const std::string& text) {
   auto loaded = hal::load_board_string(text, "test-board.yaml");
   EXPECT_TRUE(loaded) << loaded.error().message;
   return loaded ? std::move(*loaded) : hal::BoardConfig{};
@@ -28,7 +28,7 @@ TEST(RpiHeaderPin, NoPinForOtherChipsOrLinesOffTheHeader) {
 }
 
 TEST(WiringTables, GpioRowsSortedByLineWithEverythingAWirerNeeds) {
-  const std::string tables = wiring_tables(board(R"(
+  const std::string tables = wiring_tables(loaded_board(R"(
 board: test-pi
 description: A test Pi
 arch: arm64
@@ -54,7 +54,7 @@ gpio:
 }
 
 TEST(WiringTables, OtherChipsByAliasAndLineAndBusTables) {
-  const std::string tables = wiring_tables(board(R"(
+  const std::string tables = wiring_tables(loaded_board(R"(
 board: test-expander
 arch: armhf
 hub: tool_ecu
@@ -82,14 +82,14 @@ modbus:
 TEST(WiringSection, LeavesOutSimulationBoardsAndSortsByName) {
   std::vector<hal::BoardConfig> boards;
   for (const char* name : {"zeta", "alpha"}) {
-    boards.push_back(board(std::string("board: ") + name + R"(
+    boards.push_back(loaded_board(std::string("board: ") + name + R"(
 arch: arm64
 hub: dock_ecu
 can:
   bus: {interface: can0}
 )"));
   }
-  boards.push_back(board(R"(
+  boards.push_back(loaded_board(R"(
 board: beta-sim
 arch: x86_64
 hub: dock_ecu

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 namespace lifecycle = hub_msgs::msg::StateHeader_Constants;
 
 // Generous: a loaded 2-core machine running sanitizer builds (see fastdds_dock_interop_test.cc).
-constexpr auto kPatience = milliseconds(20000);
-constexpr auto kCommandPeriod = milliseconds(50);
+constexpr auto kLayoutPatience = milliseconds(20000);
+constexpr auto kLayoutCommandPeriod = milliseconds(50);
 
 hub_msgs::msg::DockEcuCommand hub_command(const std::string& hub_name, const std::string& fragment_name,
                                           const std::string& action) {
@@ -62,7 +62,8 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
     auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
+    ASSERT_TRUE(planner_->wait_for_hub(kLayoutPatience)) << planner_->match_report() << "\n"
+                                                         << hub_->output();
   }
   void TearDown() override {
     if (planner_) (void)planner_->stop_repeating();
@@ -70,7 +71,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
   }
 
   std::optional<DockEcuState> state_where(const std::function<bool(const DockEcuState&)>& predicate) {
-    auto received = planner_->wait_for_state(predicate, kPatience);
+    auto received = planner_->wait_for_state(predicate, kLayoutPatience);
     if (!received) return std::nullopt;
     return received->state;
   }
@@ -82,7 +83,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
 };
 
 TEST_F(FastDdsDockHubLayoutInteropTest, TheHubCommandReachesTheNodeAndTheHubStateCarriesItsState) {
-  planner_->start_repeating(hub_command("dock_ecu", "", "monitor"), kCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu", "", "monitor"), kLayoutCommandPeriod);
   auto state = state_where([](const DockEcuState& s) { return s.fresh_msg() && s.dock().fresh_msg(); });
   ASSERT_TRUE(state) << hub_->output();
   EXPECT_EQ(state->name(), "dock_ecu");
@@ -97,7 +98,7 @@ TEST_F(FastDdsDockHubLayoutInteropTest, TheHubCommandReachesTheNodeAndTheHubStat
 }
 
 TEST_F(FastDdsDockHubLayoutInteropTest, ACommandForAnotherHubIsRejectedByTheHub) {
-  planner_->start_repeating(hub_command("dock_ecu9", "", "monitor"), kCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu9", "", "monitor"), kLayoutCommandPeriod);
   auto rejected = state_where([](const DockEcuState& s) {
     return joined_errors(s).find("wrong target: addressed to 'dock_ecu9', this node is 'dock_ecu'") !=
            std::string::npos;
@@ -108,7 +109,7 @@ TEST_F(FastDdsDockHubLayoutInteropTest, ACommandForAnotherHubIsRejectedByTheHub)
 }
 
 TEST_F(FastDdsDockHubLayoutInteropTest, AFragmentForAnotherNodeIsRejectedByTheNode) {
-  planner_->start_repeating(hub_command("dock_ecu", "dock9", "monitor"), kCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu", "dock9", "monitor"), kLayoutCommandPeriod);
   auto rejected = state_where([](const DockEcuState& s) {
     return joined_errors(s.dock()).find("wrong target: addressed to 'dock9', this node is 'dock'") !=
            std::string::npos;

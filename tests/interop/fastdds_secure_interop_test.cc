@@ -24,7 +24,7 @@ using std::chrono::milliseconds;
 namespace fs = std::filesystem;
 
 // Generous: a loaded 2-core machine; the security handshake adds several round trips.
-constexpr auto kPatience = milliseconds(30000);
+constexpr auto kSecurePatience = milliseconds(30000);
 
 // Cyclone takes "file:<path>" (and a PEM inline as "data:,..."); Fast DDS 2.9 refuses that
 // ("Unsupported URI format", PKIDH.cpp) and wants "file://<path>".
@@ -121,14 +121,14 @@ TEST_F(FastDdsSecureInteropTest, AnAuthenticatedFastDdsPlannerReadsAndCommandsAS
   planner_ = std::move(*planner);
   const auto started = std::chrono::steady_clock::now();
   start_hub();
-  ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
+  ASSERT_TRUE(planner_->wait_for_hub(kSecurePatience)) << planner_->match_report() << "\n" << hub_->output();
   std::printf("secured: hubd start, handshake and match took %.2f s\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-  auto first = planner_->next_state(kPatience);
+  auto first = planner_->next_state(kSecurePatience);
   ASSERT_TRUE(first) << hub_->output();
   EXPECT_EQ(first->state.name(), "dock");
   planner_->start_repeating(dock_command("dock", "dock", "monitor"), milliseconds(50));
-  auto fresh = planner_->wait_for_state([](const DockState& s) { return s.fresh_msg(); }, kPatience);
+  auto fresh = planner_->wait_for_state([](const DockState& s) { return s.fresh_msg(); }, kSecurePatience);
   ASSERT_TRUE(fresh) << hub_->output();
   EXPECT_EQ(fresh->state.echo().action(), "monitor");
   EXPECT_EQ(fresh->state.header().lifecycle(), hub_msgs::msg::StateHeader_Constants::LIFECYCLE_OPERATIONAL);
@@ -163,12 +163,13 @@ TEST_F(FastDdsSecureInteropTest, UnauthenticatedAndUntrustedFastDdsPlannersSeeAn
   // The outsiders command all along; the trusted planner only reads.
   (*plain)->start_repeating(dock_command("dock", "dock", "monitor"), milliseconds(50));
   (*rogue)->start_repeating(dock_command("dock", "dock", "monitor"), milliseconds(50));
-  ASSERT_TRUE((*trusted)->wait_for_hub(kPatience)) << (*trusted)->match_report() << "\n" << hub_->output();
+  ASSERT_TRUE((*trusted)->wait_for_hub(kSecurePatience)) << (*trusted)->match_report() << "\n"
+                                                         << hub_->output();
   // 3 s of heartbeat, seen by the trusted planner: no State fresh, so no outsider's command took
   // effect, while the outsiders receive nothing at all.
   constexpr int kStates = 30;
   for (int i = 0; i < kStates; ++i) {
-    auto state = (*trusted)->next_state(kPatience);
+    auto state = (*trusted)->next_state(kSecurePatience);
     ASSERT_TRUE(state) << hub_->output();
     EXPECT_FALSE(state->state.fresh_msg()) << "an unauthenticated or untrusted command took effect";
   }

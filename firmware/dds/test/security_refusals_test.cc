@@ -11,7 +11,7 @@ namespace {
 
 constexpr const char* kHandshake = "/build/cyclonedds-0.10.2/src/core/ddsi/src/ddsi_handshake.c";
 constexpr const char* kMatch = "/build/cyclonedds-0.10.2/src/core/ddsi/src/ddsi_entity_match.c";
-constexpr const char* kOmg = "/build/cyclonedds-0.10.2/src/core/ddsi/src/ddsi_security_omg.c";
+constexpr const char* kOmgSource = "/build/cyclonedds-0.10.2/src/core/ddsi/src/ddsi_security_omg.c";
 
 TEST(SecurityRefusals, ClassifiesCyclonesLinesByFileFunctionAndMarker) {
   RefusalLine l = classify_security_log(
@@ -21,7 +21,7 @@ TEST(SecurityRefusals, ClassifiesCyclonesLinesByFileFunctionAndMarker) {
   ASSERT_TRUE(l.has_guid);
   EXPECT_EQ(l.guid, (std::array<std::uint32_t, 4>{0xaa, 0xbb0, 0xc, 0x1c1}));
 
-  l = classify_security_log(kOmg, "q_omg_security_check_remote_writer_permissions",
+  l = classify_security_log(kOmgSource, "q_omg_security_check_remote_writer_permissions",
                             "Non secure remote writer 1:2:3:103 is not allowed.");
   EXPECT_EQ(l.what, RefusedWhat::kWriter);
   EXPECT_TRUE(l.has_guid);
@@ -34,8 +34,9 @@ TEST(SecurityRefusals, ClassifiesCyclonesLinesByFileFunctionAndMarker) {
   EXPECT_EQ(l.what, RefusedWhat::kAuthentication);
   EXPECT_FALSE(l.has_guid);
 
-  EXPECT_EQ(classify_security_log(kOmg, "f", "Plugin does not allow remote participant 5:6:7:1c1: x").what,
-            RefusedWhat::kParticipant);
+  EXPECT_EQ(
+      classify_security_log(kOmgSource, "f", "Plugin does not allow remote participant 5:6:7:1c1: x").what,
+      RefusedWhat::kParticipant);
   // Not refusals: a handshake that succeeded, an oversize drop, a look-alike file, a GUID cut short.
   EXPECT_EQ(
       classify_security_log(kMatch, "handshake_end_cb", "handshake (lguid=1:2:3:4 rguid=5:6:7:8) processed")
@@ -46,17 +47,18 @@ TEST(SecurityRefusals, ClassifiesCyclonesLinesByFileFunctionAndMarker) {
                 .what,
             RefusedWhat::kNothing);
   EXPECT_EQ(classify_security_log("/x/my_ddsi_handshake.c", "f", "anything").what, RefusedWhat::kNothing);
-  l = classify_security_log(kOmg, "f", "Non secure remote writer 1:2 is not allowed.");
+  l = classify_security_log(kOmgSource, "f", "Non secure remote writer 1:2 is not allowed.");
   EXPECT_EQ(l.what, RefusedWhat::kWriter);
   EXPECT_FALSE(l.has_guid);
-  EXPECT_FALSE(classify_security_log(kOmg, "f", "Non secure remote writer 123456789:2:3:4").has_guid)
+  EXPECT_FALSE(classify_security_log(kOmgSource, "f", "Non secure remote writer 123456789:2:3:4").has_guid)
       << "more than 32 bits";
 }
 
 // Each TEST runs in its own process (gtest_discover_tests): the sink is installed here first.
 TEST(SecurityRefusals, CountsDistinctPeersAndLogsRateLimited) {
   EXPECT_FALSE(security_refusals_counted());
-  EXPECT_FALSE(detail::observe_security_log(kOmg, "f", "Non secure remote writer 1:2:3:103 is not allowed."))
+  EXPECT_FALSE(
+      detail::observe_security_log(kOmgSource, "f", "Non secure remote writer 1:2:3:103 is not allowed."))
       << "nothing is counted before the sink is installed";
   count_security_refusals();
   EXPECT_TRUE(security_refusals_counted());
@@ -64,14 +66,14 @@ TEST(SecurityRefusals, CountsDistinctPeersAndLogsRateLimited) {
   testing::internal::CaptureStderr();
   // Through Cyclone's own logging entry point, as GVWARNING ends up.
   for (int i = 0; i < 3; ++i)
-    dds_log(DDS_LC_WARNING, kOmg, 1, "q_omg_security_check_remote_writer_permissions",
+    dds_log(DDS_LC_WARNING, kOmgSource, 1, "q_omg_security_check_remote_writer_permissions",
             "Non secure remote writer %x:%x:%x:%x is not allowed.\n", 1u, 2u, 3u, 0x103u);
-  dds_log(DDS_LC_WARNING, kOmg, 1, "q_omg_security_check_remote_writer_permissions",
+  dds_log(DDS_LC_WARNING, kOmgSource, 1, "q_omg_security_check_remote_writer_permissions",
           "Non secure remote writer %x:%x:%x:%x is not allowed.\n", 1u, 2u, 3u, 0x203u);
   dds_log(DDS_LC_WARNING, kHandshake, 1, "begin_handshake_reply_impl",
           "Begin handshake reply failed: %s(code: 0)\n",
           "Certificate verification error: unable to get local issuer certificate");
-  dds_log(DDS_LC_WARNING, kOmg, 1, "f", "some other warning\n");
+  dds_log(DDS_LC_WARNING, kOmgSource, 1, "f", "some other warning\n");
   const std::string logged = testing::internal::GetCapturedStderr();
   const SecurityRefusalCounts counts = security_refusals();
   EXPECT_EQ(counts.writers, 2u) << "two writers, one of them refused three times";

@@ -16,7 +16,7 @@ namespace {
 
 using nlohmann::json;
 
-const Time kStart = Time(std::chrono::seconds(1000));
+const Time kBridgeStart = Time(std::chrono::seconds(1000));
 
 struct FakeLink final : ClientLink {
   std::atomic<int> wakes{0};
@@ -100,7 +100,7 @@ TEST_F(BridgeTest, ChannelsFollowTheTopicsAsTheyComeAndGo) {
   auto revised = std::make_shared<TapTopic>(*state);
   revised->revision = 1;  // another writer's QoS: the same channel, nothing to say
   bridge.dispatch(event(TapEvent::Kind::kTopic, revised));
-  client->on_text(R"({"op":"subscribe","subscriptions":[{"id":7,"channelId":2}]})", kStart);
+  client->on_text(R"({"op":"subscribe","subscriptions":[{"id":7,"channelId":2}]})", kBridgeStart);
   bridge.dispatch(event(TapEvent::Kind::kSample, state));
   bridge.dispatch(event(TapEvent::Kind::kTopicGone, state));
   bridge.dispatch(event(TapEvent::Kind::kSample, state));  // after gone: nobody gets it
@@ -123,7 +123,7 @@ TEST_F(BridgeTest, AClientThatNeverReadsLosesOnlyItsOwnSamples) {
   auto reader = join(bridge);
   auto stalled = join(bridge);
   for (auto* client : {&reader, &stalled})
-    (*client)->on_text(R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1}]})", kStart);
+    (*client)->on_text(R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1}]})", kBridgeStart);
   texts(*reader);
   // The tap's events from another thread, as in hubctl; this thread reads for one client only.
   constexpr std::size_t kSamples = 2000;
@@ -140,7 +140,7 @@ TEST_F(BridgeTest, AClientThatNeverReadsLosesOnlyItsOwnSamples) {
     if (auto frame = reader->next_frame(); frame && !frame->is_text()) ++received;
   }
   dispatcher.join();
-  bridge.tick(kStart);
+  bridge.tick(kBridgeStart);
   EXPECT_EQ(received + reader->counters().messages_dropped, kSamples);
   EXPECT_EQ(stalled->counters().messages_queued, 10U);
   EXPECT_EQ(stalled->counters().messages_dropped, kSamples - 10);
@@ -192,7 +192,7 @@ TEST_F(BridgeTest, WhoMayPublishIsDecidedPerClient) {
   EXPECT_EQ(capabilities(*page), json::array());
   page->on_text(
       R"({"op":"advertise","channels":[{"id":1,"topic":"/dock/command","encoding":"cdr","schemaName":"x"}]})",
-      kStart);
+      kBridgeStart);
   const std::string refusal = texts(*page).at(0)["message"];
   EXPECT_NE(refusal.find("pages from https://evil.example may not publish"), std::string::npos) << refusal;
   EXPECT_NE(log.back().find("pages from https://evil.example"), std::string::npos);
@@ -202,11 +202,11 @@ TEST_F(BridgeTest, AClientThatReadsNoJsonIsClosed) {
   options_.limits.control_bytes = 200;
   Bridge bridge(options_, nullptr, {});
   auto client = join(bridge);
-  bridge.tick(kStart);
+  bridge.tick(kBridgeStart);
   EXPECT_EQ(links_[0]->closes, 0);
   for (std::uint32_t id = 0; id < 10; ++id)
     bridge.dispatch(event(TapEvent::Kind::kTopic, topic_of(id, "/t")));
-  bridge.tick(kStart);
+  bridge.tick(kBridgeStart);
   EXPECT_EQ(links_[0]->closes, 1);
 }
 

@@ -36,7 +36,7 @@ StationNetwork load(const std::string& text) {
   return station ? *station : StationNetwork{};
 }
 
-std::string error_of(const std::string& text) {
+std::string net_config_error_of(const std::string& text) {
   auto station = load_station_network_string(text, "station.yaml");
   EXPECT_FALSE(station) << "accepted:\n" << text;
   return station ? "" : station.error().message;
@@ -155,39 +155,41 @@ TEST(NetConfig, AnUnknownHostIsNamedWithTheStationsHosts) {
 }
 
 TEST(StationNetwork, RefusesADuplicateAddressAtItsLine) {
-  EXPECT_EQ(error_of("hosts:\n  a: {address: 10.0.0.1, runs: [x]}\n  b: {address: 10.0.0.1, runs: [y]}\n"),
+  EXPECT_EQ(net_config_error_of(
+                "hosts:\n  a: {address: 10.0.0.1, runs: [x]}\n  b: {address: 10.0.0.1, runs: [y]}\n"),
             "station.yaml:3:16: hosts.b.address: 10.0.0.1 is also the address of host 'a' (line 2)");
 }
 
 TEST(StationNetwork, RefusesAProcessOnTwoHosts) {
-  EXPECT_THAT(error_of("hosts:\n  a: {address: 10.0.0.1, runs: [tool_ecu]}\n"
-                       "  b: {address: 10.0.0.2, runs: [planner, tool_ecu]}\n"),
+  EXPECT_THAT(net_config_error_of("hosts:\n  a: {address: 10.0.0.1, runs: [tool_ecu]}\n"
+                                  "  b: {address: 10.0.0.2, runs: [planner, tool_ecu]}\n"),
               HasSubstr("station.yaml:3:32: hosts.b.runs: 'tool_ecu' already runs on host 'a' (line 2)"));
 }
 
 TEST(StationNetwork, RefusesBadValuesWithFileAndLine) {
-  EXPECT_EQ(error_of("hosts:\n  a: {address: 10.0.0.300}\n"),
+  EXPECT_EQ(net_config_error_of("hosts:\n  a: {address: 10.0.0.300}\n"),
             "station.yaml:2:16: hosts.a.address: '10.0.0.300' is not an IPv4 address (e.g. 10.8.0.11)");
-  EXPECT_THAT(error_of("hosts:\n  a: {address: pi.local}\n"), HasSubstr("is not an IPv4 address"));
-  EXPECT_THAT(error_of("hosts:\n  a: {address: 10.0.0.1, interface: 'eth0 up'}\n"),
+  EXPECT_THAT(net_config_error_of("hosts:\n  a: {address: pi.local}\n"), HasSubstr("is not an IPv4 address"));
+  EXPECT_THAT(net_config_error_of("hosts:\n  a: {address: 10.0.0.1, interface: 'eth0 up'}\n"),
               HasSubstr("hosts.a.interface: 'eth0 up' is not a network interface name"));
-  EXPECT_THAT(error_of("hosts:\n  a--b: {address: 10.0.0.1}\n"), HasSubstr("host name 'a--b'"));
-  EXPECT_THAT(error_of("hosts:\n  a: {address: 10.0.0.1, runs: ['<x>']}\n"),
+  EXPECT_THAT(net_config_error_of("hosts:\n  a--b: {address: 10.0.0.1}\n"), HasSubstr("host name 'a--b'"));
+  EXPECT_THAT(net_config_error_of("hosts:\n  a: {address: 10.0.0.1, runs: ['<x>']}\n"),
               HasSubstr("is not a process name"));
-  EXPECT_EQ(error_of("hosts:\n  a: {address: 10.0.0.1, run: [x]}\n"),
+  EXPECT_EQ(net_config_error_of("hosts:\n  a: {address: 10.0.0.1, run: [x]}\n"),
             "station.yaml:2:26: hosts.a.run: unknown key (expected one of: address, interface, runs)");
-  EXPECT_THAT(error_of("hosts: {}\n"), HasSubstr("hosts: lists no host"));
-  EXPECT_THAT(error_of("domain: 300\nhosts:\n  a: {address: 10.0.0.1}\n"),
+  EXPECT_THAT(net_config_error_of("hosts: {}\n"), HasSubstr("hosts: lists no host"));
+  EXPECT_THAT(net_config_error_of("domain: 300\nhosts:\n  a: {address: 10.0.0.1}\n"),
               HasSubstr("station.yaml:1:9: domain"));
-  EXPECT_THAT(error_of("hosts:\n  a: {address: 10.0.0.1\n"), HasSubstr("station.yaml:"));
+  EXPECT_THAT(net_config_error_of("hosts:\n  a: {address: 10.0.0.1\n"), HasSubstr("station.yaml:"));
 }
 
 TEST(StationNetwork, RefusesPortsBeyondUdp) {
   // Domain 232 leaves 7400 + 58000 + 10 .. 65535: 62 participant indices.
-  EXPECT_THAT(error_of("domain: 232\nspare_participants: 100\nhosts:\n  a: {address: 10.0.0.1}\n"),
+  EXPECT_THAT(net_config_error_of("domain: 232\nspare_participants: 100\nhosts:\n  a: {address: 10.0.0.1}\n"),
               HasSubstr("needs UDP port"));
-  EXPECT_THAT(error_of("spare_participants: 119\nhosts:\n  a: {address: 10.0.0.1, runs: [x, y]}\n"),
-              HasSubstr("participant index 120; Cyclone allows up to 119"));
+  EXPECT_THAT(
+      net_config_error_of("spare_participants: 119\nhosts:\n  a: {address: 10.0.0.1, runs: [x, y]}\n"),
+      HasSubstr("participant index 120; Cyclone allows up to 119"));
 }
 
 TEST(StationNetwork, AMissingFileIsNotFound) {

@@ -16,7 +16,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string error_of(const std::string& text, const std::string& name = "plant.yaml") {
+std::string plant_error_of(const std::string& text, const std::string& name = "plant.yaml") {
   auto plant = load_plant_file_string(text, name);
   EXPECT_FALSE(plant) << "accepted:\n" << text;
   return plant ? "" : plant.error().message;
@@ -41,25 +41,28 @@ stations:
 }
 
 TEST(PlantFile, RefusesWhatWouldMixStationsUpNamingFileAndLine) {
-  EXPECT_THAT(error_of("stations: {a: {domain: 10}, b: {domain: 10}}"),
+  EXPECT_THAT(plant_error_of("stations: {a: {domain: 10}, b: {domain: 10}}"),
               HasSubstr("domain 10 is also the domain of station 'a'"));
-  EXPECT_THAT(error_of("stations:\n  a: {domain: 10}\n  b: {domain: 10}\n"), HasSubstr("plant.yaml:3"));
-  EXPECT_THAT(error_of("stations: {a: {domain: 233}}"), HasSubstr("domain"));
-  EXPECT_THAT(error_of("stations: {a: {domain: -1}}"), HasSubstr("domain"));
-  EXPECT_THAT(error_of("stations: {a: {}}"), HasSubstr("neither a domain nor a station file"));
-  EXPECT_THAT(error_of("stations: {a: {domain: 1, host: x}}"), HasSubstr("host"));
-  EXPECT_THAT(error_of("stations: {}"), HasSubstr("lists no station"));
-  EXPECT_THAT(error_of("cells: {a: {domain: 1}}"), HasSubstr("cells"));
-  EXPECT_THAT(error_of("stations: {a: {domain: 1}}\nstations: {b: {domain: 2}}\n"), HasSubstr("stations"));
+  EXPECT_THAT(plant_error_of("stations:\n  a: {domain: 10}\n  b: {domain: 10}\n"), HasSubstr("plant.yaml:3"));
+  EXPECT_THAT(plant_error_of("stations: {a: {domain: 233}}"), HasSubstr("domain"));
+  EXPECT_THAT(plant_error_of("stations: {a: {domain: -1}}"), HasSubstr("domain"));
+  EXPECT_THAT(plant_error_of("stations: {a: {}}"), HasSubstr("neither a domain nor a station file"));
+  EXPECT_THAT(plant_error_of("stations: {a: {domain: 1, host: x}}"), HasSubstr("host"));
+  EXPECT_THAT(plant_error_of("stations: {}"), HasSubstr("lists no station"));
+  EXPECT_THAT(plant_error_of("cells: {a: {domain: 1}}"), HasSubstr("cells"));
+  EXPECT_THAT(plant_error_of("stations: {a: {domain: 1}}\nstations: {b: {domain: 2}}\n"),
+              HasSubstr("stations"));
   // Names become the first part of the station's topics: a ROS name token, nothing else.
   for (const char* bad : {"1st", "cell-a", "cell/a", "_a", "cell a", "\"\""}) {
-    EXPECT_THAT(error_of(std::string("stations: {") + bad + ": {domain: 1}}"), HasSubstr("station name"))
+    EXPECT_THAT(plant_error_of(std::string("stations: {") + bad + ": {domain: 1}}"),
+                HasSubstr("station name"))
         << bad;
   }
-  EXPECT_THAT(error_of("stations: {" + std::string(64, 'a') + ": {domain: 1}}"), HasSubstr("station name"));
+  EXPECT_THAT(plant_error_of("stations: {" + std::string(64, 'a') + ": {domain: 1}}"),
+              HasSubstr("station name"));
   std::string many = "stations:\n";
   for (int i = 0; i < 65; ++i) many += "  s" + std::to_string(i) + ": {domain: " + std::to_string(i) + "}\n";
-  EXPECT_THAT(error_of(many), HasSubstr("at most 64"));
+  EXPECT_THAT(plant_error_of(many), HasSubstr("at most 64"));
 }
 
 TEST(PlantFile, StationNamesAreRosNameTokens) {

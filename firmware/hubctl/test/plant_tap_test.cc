@@ -22,7 +22,7 @@ namespace hubrt::hubctl {
 namespace {
 
 // Discovery and delivery take milliseconds; generous for sanitizer builds on a loaded machine.
-constexpr auto kPatience = std::chrono::seconds(30);
+constexpr auto kPlantTapPatience = std::chrono::seconds(30);
 
 class PlantTapTest : public ::testing::Test {
  protected:
@@ -89,11 +89,11 @@ TEST_F(PlantTapTest, EachStationsTopicsComeUnderItsNameWithItsOwnIdAndDomain) {
   std::map<std::string, std::shared_ptr<const TapTopic>> topics;
   std::map<std::string, std::set<std::string>> actions;  // per topic name
   bool written = false;
-  const auto deadline = std::chrono::steady_clock::now() + kPatience;
+  const auto deadline = std::chrono::steady_clock::now() + kPlantTapPatience;
   while (std::chrono::steady_clock::now() < deadline &&
          (actions["/cell_a/dock/command"].size() < 1 || actions["/cell_b/dock/command"].size() < 1)) {
-    if (!written && topics.size() == 2 && a->writer.wait_for_readers(1, kPatience) &&
-        b->writer.wait_for_readers(1, kPatience)) {
+    if (!written && topics.size() == 2 && a->writer.wait_for_readers(1, kPlantTapPatience) &&
+        b->writer.wait_for_readers(1, kPlantTapPatience)) {
       ASSERT_TRUE(a->writer.write(from_a.data()).is_ok());
       ASSERT_TRUE(b->writer.write(from_b.data()).is_ok());
       written = true;
@@ -141,7 +141,7 @@ TEST_F(PlantTapTest, OneUnnamedStationKeepsThePlainNames) {
   dds::Participant hub = join(0, "hub");
   auto station = station_writer(hub);
   ASSERT_TRUE(station);
-  const auto deadline = std::chrono::steady_clock::now() + kPatience;
+  const auto deadline = std::chrono::steady_clock::now() + kPlantTapPatience;
   std::shared_ptr<const TapTopic> seen;
   while (!seen && std::chrono::steady_clock::now() < deadline) {
     auto event = source->next(std::chrono::milliseconds(50));

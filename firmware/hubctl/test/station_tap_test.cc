@@ -18,7 +18,7 @@ namespace hubrt::hubctl {
 namespace {
 
 // Discovery and delivery take milliseconds; generous for sanitizer builds on a loaded machine.
-constexpr auto kPatience = std::chrono::seconds(30);
+constexpr auto kStationTapPatience = std::chrono::seconds(30);
 
 class StationTapTest : public ::testing::Test {
  protected:
@@ -35,9 +35,9 @@ class StationTapTest : public ::testing::Test {
     ASSERT_NE(command_type_, nullptr);
   }
 
-  // The next event of `kind` on `topic`, skipping others; nullopt after kPatience.
+  // The next event of `kind` on `topic`, skipping others; nullopt after kStationTapPatience.
   static std::optional<TapEvent> next_of(TapSource& source, TapEvent::Kind kind, const std::string& topic) {
-    const auto deadline = std::chrono::steady_clock::now() + kPatience;
+    const auto deadline = std::chrono::steady_clock::now() + kStationTapPatience;
     while (std::chrono::steady_clock::now() < deadline) {
       auto event = source.next(std::chrono::milliseconds(50));
       if (event && event->kind == kind && event->topic->ros_name == topic) return event;
@@ -79,7 +79,7 @@ TEST_F(StationTapTest, ATopicThatAppearsLaterIsTakenAsTheBytesThatWereWritten) {
   EXPECT_EQ(announced->topic->offered[0].depth, 7);
 
   // Best effort: the tap's reader matches it only if it asked for best effort too.
-  ASSERT_TRUE(writer->wait_for_readers(1, kPatience));
+  ASSERT_TRUE(writer->wait_for_readers(1, kStationTapPatience));
   auto codec = dds::CdrCodec::create(*station_, *command_type_->descriptor);
   ASSERT_TRUE(codec);
   const dds::UntypedSample sent = command("monitor");
@@ -114,7 +114,7 @@ TEST_F(StationTapTest, AConsumerThatDoesNotReadLosesItsOwnSamplesAndHoldsUpNobod
   auto writer = dds::UntypedWriter::create(*station_, *topic, dds::Qos::ros2_default(100));
   ASSERT_TRUE(topic && writer);
   ASSERT_TRUE(next_of(*reading, TapEvent::Kind::kTopic, "/dock/command"));
-  ASSERT_TRUE(writer->wait_for_readers(1, kPatience));
+  ASSERT_TRUE(writer->wait_for_readers(1, kStationTapPatience));
   const dds::UntypedSample sent = command("monitor");
   for (int n = 0; n < 50; ++n) ASSERT_TRUE(writer->write(sent.data()).is_ok());
   for (int n = 1; n <= 50; ++n) ASSERT_TRUE(next_of(*reading, TapEvent::Kind::kSample, "/dock/command")) << n;

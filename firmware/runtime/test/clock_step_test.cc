@@ -23,7 +23,7 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 
 constexpr Duration kTimeout = seconds(1);
-constexpr Duration kPeriod = milliseconds(10);  // the hub's cycle (100 Hz)
+constexpr Duration kHubPeriod = milliseconds(10);  // the hub's cycle (100 Hz)
 constexpr Duration kStep = seconds(10);
 
 struct Step {
@@ -63,7 +63,7 @@ TEST_P(ClockStepTest, NoCommandActsAfterTheStepAndTheNodeGoesSafeOnItsTimeout) {
   const Time start = clock_.now().mono;
   const Time stepped_at = start + seconds(2);
   std::optional<Time> safe_at;
-  for (Time planner_next = start; clock_.now().mono < start + seconds(5); clock_.advance(kPeriod)) {
+  for (Time planner_next = start; clock_.now().mono < start + seconds(5); clock_.advance(kHubPeriod)) {
     const Time now = clock_.now().mono;
     if (now >= stepped_at && hub_offset_ == Duration::zero() && planner_offset_ == Duration::zero()) {
       (step.on_hub ? hub_offset_ : planner_offset_) = step.by;
@@ -88,7 +88,7 @@ TEST_P(ClockStepTest, NoCommandActsAfterTheStepAndTheNodeGoesSafeOnItsTimeout) {
   EXPECT_TRUE(node_->errors().contains(step.reason)) << node_->errors().at(0);
   // The last good command was written at most one planner period before the step.
   const Duration to_safe = *safe_at - stepped_at;
-  EXPECT_LE(to_safe, kTimeout + kPeriod);
+  EXPECT_LE(to_safe, kTimeout + kHubPeriod);
   EXPECT_GE(to_safe, kTimeout - milliseconds(100));
   test_support::record_time_to_safe(
       std::string("clock_step_") + step.name,
@@ -101,7 +101,7 @@ TEST_P(ClockStepTest, NoCommandActsAfterTheStepAndTheNodeGoesSafeOnItsTimeout) {
                                         ? "they look 10 s old (stale)"
                                         : "they look 10 s ahead (rejected)") +
                                    "; the command in force lapses on the monotonic clock",
-                               to_seconds(to_safe), to_seconds(kTimeout + kPeriod),
+                               to_seconds(to_safe), to_seconds(kTimeout + kHubPeriod),
                                "command timeout + one period (manual clock)", "hubrt_clock_step_test"});
 }
 

@@ -44,7 +44,7 @@ class RecordingSink final : public StateSink<ValveState> {
   const ManualClock& clock_;
 };
 
-constexpr auto kPeriod = milliseconds(100);
+constexpr auto kStatePeriod = milliseconds(100);
 constexpr auto kBudget = milliseconds(10);
 
 class BudgetTest : public ::testing::Test {
@@ -76,7 +76,7 @@ class BudgetTest : public ::testing::Test {
         sink_.in_cycle = true;
         hub_.cycle(clock_.now());
         sink_.in_cycle = false;
-        next_cycle_ += kPeriod;
+        next_cycle_ += kStatePeriod;
       }
       if (const char* action = action_at(i++); action != nullptr) {
         command(action);
@@ -91,7 +91,7 @@ class BudgetTest : public ::testing::Test {
   QueueSource source_;
   RecordingSink sink_{clock_};
   ReflectedMessageOps ops_{msgs::type_info_of<ValveCommand>()};
-  Hub hub_{HubOptions{"test", "hub", kPeriod, nullptr}};
+  Hub hub_{HubOptions{"test", "hub", kStatePeriod, nullptr}};
   Node<ValveLogic>* node_ = nullptr;
   Time next_cycle_ = clock_.now().mono;
   std::vector<Time> heartbeats_;
@@ -132,7 +132,7 @@ TEST_F(BudgetTest, CommandsBackToBackAfterAQuietPeriodAreAllEchoedAtOnceUpToTheB
   // A planner that sends its next command as soon as the echo of the last one is back (a round
   // trip of 100 us): with issue 11's plain interval the second one already waited for the
   // heartbeat (8.9 ms p50 in the echo benchmark).
-  clock_.advance(kPeriod);
+  clock_.advance(kStatePeriod);
   for (std::uint32_t i = 0; i < kDefaultImmediateStateBurst; ++i) {
     command(i % 2 == 0 ? "open" : "close");
     const std::size_t before = sink_.published.size();
@@ -160,7 +160,7 @@ TEST_F(BudgetTest, TheLatestCommandWinsAtOnceAndTheNextStateEchoesIt) {
   EXPECT_GT(node_->states_deferred(), deferred_before);
   const std::size_t before = sink_.published.size();
   // No more commands: the next State is the heartbeat, and it echoes the latest command.
-  run(kPeriod, milliseconds(1), [](int) -> const char* { return nullptr; });
+  run(kStatePeriod, milliseconds(1), [](int) -> const char* { return nullptr; });
   ASSERT_GT(sink_.published.size(), before);
   EXPECT_EQ(sink_.published[before].echo, "close");
   EXPECT_TRUE(sink_.published[before].heartbeat);

@@ -7,7 +7,7 @@
 namespace hubrt::hal {
 namespace {
 
-constexpr const char* kBoard = R"(board: x
+constexpr const char* kBoardText = R"(board: x
 arch: arm64
 hub: dock_ecu
 gpio:
@@ -24,7 +24,7 @@ can:
 class BoardRequirementsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto loaded = load_board_string(kBoard, "boards/x.yaml");
+    auto loaded = load_board_string(kBoardText, "boards/x.yaml");
     ASSERT_TRUE(loaded.is_ok()) << loaded.error().message;
     board_ = std::move(*loaded);
   }

@@ -10,7 +10,7 @@
 namespace hubrt::mir_com::test {
 namespace {
 
-hub_msgs::PoseSaverCommand command(std::string_view action, std::string_view pose = "") {
+hub_msgs::PoseSaverCommand pose_command(std::string_view action, std::string_view pose = "") {
   hub_msgs::PoseSaverCommand c;
   c.set_target_type("pose_saver");
   c.set_target_name("poses");
@@ -43,7 +43,7 @@ TEST_F(PoseSaverTest, UpdateSavesTheCurrentPoseOncePerCommand) {
   EXPECT_EQ(posts(), 0) << "nothing is saved without a command";
   EXPECT_TRUE(std::isnan(state.x()) && std::isnan(state.y()) && std::isnan(state.yaw()))
       << "no pose saved yet";
-  const hub_msgs::PoseSaverCommand update = command("update", "here");
+  const hub_msgs::PoseSaverCommand update = pose_command("update", "here");
   state = run(logic, &update, seconds(2));
   EXPECT_EQ(state.done_action(), "updated") << errors_text();
   EXPECT_EQ(state.saved_pose(), "here");
@@ -55,7 +55,7 @@ TEST_F(PoseSaverTest, UpdateSavesTheCurrentPoseOncePerCommand) {
   ASSERT_NE(post, device_->sent().end());
   EXPECT_EQ(post->find(R"(POST /positions {"name": "here", "pos_x": 0.000, "pos_y": 0.000,)"), 0u) << *post;
   // "idle" between: the same name is saved again.
-  const hub_msgs::PoseSaverCommand idle = command("idle");
+  const hub_msgs::PoseSaverCommand idle = pose_command("idle");
   state = run(logic, &idle, seconds(1));
   EXPECT_EQ(state.done_action(), "");
   run(logic, &update, seconds(1));
@@ -67,7 +67,7 @@ TEST_F(PoseSaverTest, ARefusedSaveIsAFaultUntilReset) {
   PoseSaverLogic logic = make_logic();
   run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(1));
   device_->set_fault(DeviceFault::kServerError);
-  const hub_msgs::PoseSaverCommand update = command("update", "here");
+  const hub_msgs::PoseSaverCommand update = pose_command("update", "here");
   // The status GET fails as well: the save waits for a fresh pose, nothing is posted.
   run(logic, &update, seconds(1));
   EXPECT_EQ(posts(), 0);
@@ -84,7 +84,7 @@ TEST_F(PoseSaverTest, NotOperationalAbandonsASaveBeforeItsPost) {
   PoseSaverLogic logic = make_logic();
   run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(1));
   device_->set_fault(DeviceFault::kNoAnswer);
-  const hub_msgs::PoseSaverCommand update = command("update", "here");
+  const hub_msgs::PoseSaverCommand update = pose_command("update", "here");
   cycle(logic, &update);  // GET /status submitted, never answered
   run<PoseSaverLogic, hub_msgs::PoseSaverCommand>(logic, nullptr, seconds(3));
   device_->set_fault(DeviceFault::kNone);

@@ -31,7 +31,7 @@ using dds::test::Counter;
 
 // Generous: the probe's start-up and discovery on a busy 2-core machine, possibly under a
 // sanitizer; the test waits on events and only gives up at this bound.
-constexpr Duration kBound = std::chrono::seconds(30);
+constexpr Duration kCapacityBound = std::chrono::seconds(30);
 
 constexpr int kHubs = 64;
 
@@ -92,7 +92,7 @@ TEST(LoopbackCapacity, SixtyFourHubsHubctlAndAPlannerOnOneHostFindEachOther) {
   auto probe = ChildProcess::start(HUBRT_DDS_ENV_PROBE, {}, domain->env());
   ASSERT_TRUE(probe) << probe.error().message;
   std::array<dds::WaitSet::Token, 1> fired{};
-  auto n = listener.waitset->wait(fired, kBound);
+  auto n = listener.waitset->wait(fired, kCapacityBound);
   ASSERT_TRUE(n.is_ok());
   ASSERT_EQ(n.value(), 1u) << "no sample from the 66th participant; its output:\n"
                            << probe->stdout_text() << probe->stderr_text();
@@ -102,7 +102,7 @@ TEST(LoopbackCapacity, SixtyFourHubsHubctlAndAPlannerOnOneHostFindEachOther) {
   ASSERT_TRUE(taken.value());
   EXPECT_EQ(sample.count, probe->pid());
   ASSERT_TRUE(probe->signal(SIGTERM));
-  auto status = probe->wait(kBound);
+  auto status = probe->wait(kCapacityBound);
   ASSERT_TRUE(status) << status.error().message;
   EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << probe->stderr_text();
 }
