@@ -20,13 +20,8 @@ namespace hubrt::interop {
 namespace {
 
 using hub_msgs::msg::DockEcuState;
-using std::chrono::milliseconds;
 namespace fs = std::filesystem;
 namespace lifecycle = hub_msgs::msg::StateHeader_Constants;
-
-// Generous: a loaded 2-core machine running sanitizer builds (see fastdds_dock_interop_test.cc).
-constexpr auto kLayoutPatience = milliseconds(20000);
-constexpr auto kLayoutCommandPeriod = milliseconds(50);
 
 hub_msgs::msg::DockEcuCommand hub_command(const std::string& hub_name, const std::string& fragment_name,
                                           const std::string& action) {
@@ -62,8 +57,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
     auto hub = test_support::HubProcess::start(*domain_, options);
     ASSERT_TRUE(hub) << hub.error().message;
     hub_.emplace(std::move(*hub));
-    ASSERT_TRUE(planner_->wait_for_hub(kLayoutPatience)) << planner_->match_report() << "\n"
-                                                         << hub_->output();
+    ASSERT_TRUE(planner_->wait_for_hub(kPatience)) << planner_->match_report() << "\n" << hub_->output();
   }
   void TearDown() override {
     if (planner_) (void)planner_->stop_repeating();
@@ -71,7 +65,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
   }
 
   std::optional<DockEcuState> state_where(const std::function<bool(const DockEcuState&)>& predicate) {
-    auto received = planner_->wait_for_state(predicate, kLayoutPatience);
+    auto received = planner_->wait_for_state(predicate, kPatience);
     if (!received) return std::nullopt;
     return received->state;
   }
@@ -83,7 +77,7 @@ class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
 };
 
 TEST_F(FastDdsDockHubLayoutInteropTest, TheHubCommandReachesTheNodeAndTheHubStateCarriesItsState) {
-  planner_->start_repeating(hub_command("dock_ecu", "", "monitor"), kLayoutCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu", "", "monitor"), kCommandPeriod);
   auto state = state_where([](const DockEcuState& s) { return s.fresh_msg() && s.dock().fresh_msg(); });
   ASSERT_TRUE(state) << hub_->output();
   EXPECT_EQ(state->name(), "dock_ecu");
@@ -98,7 +92,7 @@ TEST_F(FastDdsDockHubLayoutInteropTest, TheHubCommandReachesTheNodeAndTheHubStat
 }
 
 TEST_F(FastDdsDockHubLayoutInteropTest, ACommandForAnotherHubIsRejectedByTheHub) {
-  planner_->start_repeating(hub_command("dock_ecu9", "", "monitor"), kLayoutCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu9", "", "monitor"), kCommandPeriod);
   auto rejected = state_where([](const DockEcuState& s) {
     return joined_errors(s).find("wrong target: addressed to 'dock_ecu9', this node is 'dock_ecu'") !=
            std::string::npos;
@@ -109,7 +103,7 @@ TEST_F(FastDdsDockHubLayoutInteropTest, ACommandForAnotherHubIsRejectedByTheHub)
 }
 
 TEST_F(FastDdsDockHubLayoutInteropTest, AFragmentForAnotherNodeIsRejectedByTheNode) {
-  planner_->start_repeating(hub_command("dock_ecu", "dock9", "monitor"), kLayoutCommandPeriod);
+  planner_->start_repeating(hub_command("dock_ecu", "dock9", "monitor"), kCommandPeriod);
   auto rejected = state_where([](const DockEcuState& s) {
     return joined_errors(s.dock()).find("wrong target: addressed to 'dock9', this node is 'dock'") !=
            std::string::npos;

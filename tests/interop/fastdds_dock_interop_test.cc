@@ -22,15 +22,9 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 namespace lifecycle = hub_msgs::msg::StateHeader_Constants;
 
-// Generous: a busy 2-core machine running sanitizer builds of several test programs at once
-// (hubd start-up and discovery take seconds there). These tests check behaviour; the benchmarks
-// measure timing.
-constexpr auto kPatience = milliseconds(20000);
 // hubs/dock_ecu/dock_ecu.yaml, the hub the test starts: State heartbeat and command timeout.
 constexpr double kHeartbeatPeriodS = 0.1;             // rate_hz: 10
 constexpr auto kCommandTimeout = milliseconds(1000);  // command_timeout_ms: 1000
-// A planner repeats its command well within the timeout (the station's planner runs at 10 Hz).
-constexpr auto kCommandPeriod = milliseconds(50);
 
 double stamp_seconds(const DockState& state) {
   return state.header().stamp().sec() + state.header().stamp().nanosec() * 1e-9;

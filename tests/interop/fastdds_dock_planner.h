@@ -4,6 +4,7 @@
 // fastddsgen over the .msg files of ros2/hub_msgs.
 #pragma once
 
+#include <chrono>
 #include <string>
 
 #include "fastdds_planner.h"
@@ -30,6 +31,14 @@ struct DockEcuHubTypes {
   static constexpr const char* kCommandTopic = "rt/dock_ecu/command";
   static constexpr const char* kStateTopic = "rt/dock_ecu/state";
 };
+
+// Generous: a busy 2-core machine running sanitizer builds of several test programs at once
+// (hubd start-up and discovery take seconds there). These tests check behaviour; the benchmarks
+// measure timing.
+inline constexpr std::chrono::milliseconds kPatience{20000};
+// A planner repeats its command well within the Dock ECU's command timeout (1000 ms); the
+// station's planner runs at 10 Hz.
+inline constexpr std::chrono::milliseconds kCommandPeriod{50};
 
 using FastDdsDockPlanner = FastDdsPlanner<DockNodeTypes>;
 using FastDdsDockEcuPlanner = FastDdsPlanner<DockEcuHubTypes>;
