@@ -7,8 +7,10 @@
 // once the kernel's buffers are full). Every client subscribes to every channel. Prints the stalled
 // client's local port ("stalled PORT", to find it in hubctl's log), then, after --seconds, one JSON
 // line: per reading client the messages, the rate and the latency from hubctl's receive timestamp
-// to here (p50, p99, max in ms).
+// to here (p50, p99, max in ms), and this process's own load over the window (CPU seconds, its event
+// loop's utilization), which tells a slow server from a starved measurer when the latency fails.
 "use strict";
+const { performance } = require("perf_hooks");
 const { Session, fail, sleep, wallNs, args, json, run } = require("./foxglove_support.cjs");
 
 function percentile(sorted, p) {
@@ -31,8 +33,15 @@ run(async () => {
   stalled.ws.pause();
   console.log(`stalled ${stalled.ws._socket.localPort}`);
   const from = wallNs();
+  const cpuFrom = process.cpuUsage();
+  const loopFrom = performance.eventLoopUtilization();
   await sleep(Number(a.seconds) * 1000);
   const seconds = Number(wallNs() - from) / 1e9;
+  const cpu = process.cpuUsage(cpuFrom);
+  const node = {
+    cpu_s: (cpu.user + cpu.system) / 1e6,
+    event_loop_utilization: performance.eventLoopUtilization(loopFrom).utilization,
+  };
   const clients = readers.map((session) => {
     const messages = [...session.subscriptions.values()].flatMap((s) => s.messages).filter((m) => m.arrived >= from);
     const latencies = messages.map((m) => Number(m.arrived - m.timestamp) / 1e6).sort((x, y) => x - y);
@@ -45,7 +54,7 @@ run(async () => {
       channels: session.subscriptions.size,
     };
   });
-  console.log(json({ seconds, clients }));
+  console.log(json({ seconds, clients, node }));
   for (const session of readers) session.close();
   stalled.ws.terminate();
 });
