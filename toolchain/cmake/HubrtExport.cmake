@@ -75,8 +75,10 @@ set(HUBRT_BUILD_DIR \"${CMAKE_BINARY_DIR}\")
 set(HUBRT_SANITIZE \"${HUBRT_SANITIZE}\" CACHE STRING \"\" FORCE)
 set(HUBRT_SHARED_LIBS ${HUBRT_SHARED_LIBS} CACHE BOOL \"\" FORCE)
 set(HUBRT_WERROR ${HUBRT_WERROR} CACHE BOOL \"\" FORCE)
-# A hub folder's tests compiled as they are in this build, so that a clash of names shows here too.
+# A hub folder's library and tests compiled as they are in this build, so that a clash of names
+# shows here too.
 set(HUBRT_UNITY_TESTS ${HUBRT_UNITY_TESTS} CACHE BOOL \"\" FORCE)
+set(HUBRT_UNITY_LIBRARIES ${HUBRT_UNITY_LIBRARIES} CACHE BOOL \"\" FORCE)
 set(HUBRT_BUILD_TESTS ON CACHE BOOL \"\" FORCE)
 set(HUBRT_IDLC_REFLECT_PLUGIN \"${plugin}\" CACHE FILEPATH \"\" FORCE)
 set(HUBRT_MSG2IDL \"${msg2idl}\" CACHE FILEPATH \"\" FORCE)

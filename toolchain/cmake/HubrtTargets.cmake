@@ -77,7 +77,25 @@ function(hubrt_target_defaults target)
     $<$<COMPILE_LANGUAGE:CXX>:${HUBRT_WARNINGS}>
     $<$<COMPILE_LANGUAGE:C>:${HUBRT_C_WARNINGS}>
     $<$<BOOL:${HUBRT_WERROR}>:-Werror>)
+  # HUBRT_UNITY_LIBRARIES (the sanitizer presets): a library's files compiled as unity sources of up
+  # to 8, as HUBRT_UNITY_TESTS does for the test programs, and for the same reason: the precompiled
+  # header saves parsing, not instantiating and generating the same templates in every file
+  # (docs/ci.md, "Libraries as unity sources"). Not the PCH's host (CMake cannot then resolve the
+  # header the libraries reuse), and not what ships: the release and cross builds compile file by
+  # file, as the board sizes were measured (docs/board-size.md).
+  if(HUBRT_UNITY_LIBRARIES AND _type MATCHES "^(STATIC|SHARED|OBJECT|MODULE)_LIBRARY$"
+     AND NOT target STREQUAL "hubrt_library_pch")
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON)
+    # The sanitizers' defaults (hubrt_cyclone_tsan_suppressions' interface sources) are the
+    # programs': a static library that links them keeps them as objects of their own, which a
+    # program that defines them already never pulls; merged into a unity source with code the program
+    # needs, they would be linked twice (lld: duplicate symbol __ubsan_default_options).
+    set_source_files_properties(${HUBRT_PROGRAM_ONLY_SOURCES} TARGET_DIRECTORY ${target}
+                                PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+  endif()
 endfunction()
+get_filename_component(_hubrt_dds_src "${CMAKE_CURRENT_LIST_DIR}/../../firmware/dds/src" ABSOLUTE)
+set(HUBRT_PROGRAM_ONLY_SOURCES ${_hubrt_dds_src}/ubsan_options.cc ${_hubrt_dds_src}/cyclone_tsan_suppressions.cc)
 
 # HUBRT_SHARED_LIBS (top-level CMakeLists.txt): hubrt's own libraries as shared objects in the
 # test builds. Statically linked, every one of ~130 sanitizer test programs carried its own copy of
@@ -131,7 +149,9 @@ function(_hubrt_library_pch name sources)
   endif()
   foreach(source IN LISTS sources)
     if(source MATCHES "\\.c$")
-      set_source_files_properties(${source} TARGET_DIRECTORY ${name} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+      # Nor in a unity source: CMake's C unity file would want a C header from the PCH's host.
+      set_source_files_properties(${source} TARGET_DIRECTORY ${name} PROPERTIES SKIP_PRECOMPILE_HEADERS ON
+                                  SKIP_UNITY_BUILD_INCLUSION ON)
     endif()
   endforeach()
   set(_definitions FMT_SHARED)

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "session.h"  // seconds()
+
 namespace hubrt::hubctl {
 namespace {
 
@@ -26,10 +28,6 @@ std::string substitute(std::string text, int iteration) {
     text.replace(at, marker.size(), value);
   }
   return text;
-}
-
-Duration seconds(double s) {
-  return std::chrono::nanoseconds(static_cast<std::int64_t>(s * 1e9));
 }
 
 std::string where(const YamlMap& map) {

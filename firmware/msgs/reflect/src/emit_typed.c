@@ -9,10 +9,6 @@
 
 typedef enum { CLASS_VIEW, CLASS_REF, CLASS_OWNING } class_kind_t;
 
-static const void* strip(const void* type_spec) {
-  return idl_strip(type_spec, IDL_STRIP_ALIASES | IDL_STRIP_FORWARD);
-}
-
 /* "pkg" and "Type" of a struct named <pkg>::msg::dds_::<Type>_ (the ROS 2 mapping). */
 static bool typed_name(const void* node, char* ns, size_t ns_size, char* type, size_t type_size) {
   char dds[REFLECT_NAME_MAX];
@@ -50,10 +46,10 @@ static bool struct_ok(const idl_struct_t* node, bool allow_sequences) {
     for (const idl_declarator_t* d = m->declarators; d != NULL; d = idl_next(d)) {
       if (idl_is_array(d)) return false;
     }
-    const void* t = strip(m->type_spec);
+    const void* t = reflect_strip_type(m->type_spec);
     if (idl_is_sequence(t)) {
       if (!allow_sequences || !idl_is_bounded(t)) return false;
-      if (!element_ok(strip(((const idl_sequence_t*)t)->type_spec), false)) return false;
+      if (!element_ok(reflect_strip_type(((const idl_sequence_t*)t)->type_spec), false)) return false;
     } else if (!element_ok(t, allow_sequences)) {
       return false;
     }
@@ -99,7 +95,7 @@ static bool emit_field(FILE* out, class_kind_t kind, const char* name, const voi
   if (idl_is_sequence(t)) {
     char traits[3 * REFLECT_NAME_MAX];
     const idl_sequence_t* seq = t;
-    if (!traits_of(strip(seq->type_spec), traits, sizeof traits)) return false;
+    if (!traits_of(reflect_strip_type(seq->type_spec), traits, sizeof traits)) return false;
     if (kind != CLASS_REF) {
       ok = fprintf(out,
                    "  [[nodiscard]] " TYPED_NS
@@ -162,7 +158,7 @@ static bool emit_field(FILE* out, class_kind_t kind, const char* name, const voi
 static bool emit_fields(FILE* out, class_kind_t kind, const idl_struct_t* node) {
   for (const idl_member_t* m = node->members; m != NULL; m = idl_next(m)) {
     for (const idl_declarator_t* d = m->declarators; d != NULL; d = idl_next(d)) {
-      if (!emit_field(out, kind, d->name->identifier, strip(m->type_spec))) return false;
+      if (!emit_field(out, kind, d->name->identifier, reflect_strip_type(m->type_spec))) return false;
     }
   }
   return true;
@@ -174,7 +170,7 @@ typedef bool (*sequence_fn)(FILE* out, const char* path, const idl_sequence_t* s
 
 static bool each_sequence(FILE* out, const idl_struct_t* node, const char* prefix, sequence_fn each) {
   for (const idl_member_t* m = node->members; m != NULL; m = idl_next(m)) {
-    const void* t = strip(m->type_spec);
+    const void* t = reflect_strip_type(m->type_spec);
     for (const idl_declarator_t* d = m->declarators; d != NULL; d = idl_next(d)) {
       char path[REFLECT_NAME_MAX];
       const int n =
@@ -201,7 +197,7 @@ static void storage_name(const char* path, char* buf, size_t size) {
 static bool emit_storage(FILE* out, const char* path, const idl_sequence_t* seq) {
   char storage[REFLECT_NAME_MAX + 16];
   storage_name(path, storage, sizeof storage);
-  const void* e = strip(seq->type_spec);
+  const void* e = reflect_strip_type(seq->type_spec);
   const char* kind = NULL;
   const char* c_type = NULL;
   if (idl_is_string(e)) {
@@ -329,7 +325,7 @@ bool reflect_emit_typed_struct(FILE* out, const idl_struct_t* node, bool has_des
 static const idl_struct_t* echoed_command(const idl_struct_t* node) {
   for (const idl_member_t* m = node->members; m != NULL; m = idl_next(m)) {
     for (const idl_declarator_t* d = m->declarators; d != NULL; d = idl_next(d)) {
-      const void* t = strip(m->type_spec);
+      const void* t = reflect_strip_type(m->type_spec);
       if (strcmp(idl_identifier(d), "echo") == 0 && idl_is_struct(t) && struct_ok(t, true)) return t;
     }
   }

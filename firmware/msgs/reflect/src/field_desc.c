@@ -68,14 +68,14 @@ bool reflect_scalar_spelling(idl_type_t type, const char** kind, const char** c_
   }
 }
 
-static const void* strip(const void* type_spec) {
+const void* reflect_strip_type(const void* type_spec) {
   return idl_strip(type_spec, IDL_STRIP_ALIASES | IDL_STRIP_FORWARD);
 }
 
 /* Fills the element part of `out` from a (non-sequence) type specifier. */
 static bool describe_element(const idl_pstate_t* pstate, const char* owner, const void* where,
                              const void* type_spec, reflect_field_desc_t* out) {
-  const void* t = strip(type_spec);
+  const void* t = reflect_strip_type(type_spec);
   const char* kind = NULL;
   const char* c_type = NULL;
   if (idl_is_declarator(t)) {
@@ -139,7 +139,7 @@ bool reflect_describe_field(const idl_pstate_t* pstate, const char* owner, const
     out->kind = "kArray";
     out->bound = dim->value.uint32;
   }
-  const void* t = strip(member->type_spec);
+  const void* t = reflect_strip_type(member->type_spec);
   if (idl_is_sequence(t)) {
     const idl_sequence_t* seq = t;
     if (out->is_array) {
@@ -147,7 +147,7 @@ bool reflect_describe_field(const idl_pstate_t* pstate, const char* owner, const
                 out->name);
       return false;
     }
-    if (idl_is_sequence(strip(seq->type_spec))) {
+    if (idl_is_sequence(reflect_strip_type(seq->type_spec))) {
       idl_error(pstate, idl_location(declarator), "%s.%s: sequences of sequences are not supported", owner,
                 out->name);
       return false;

@@ -26,6 +26,9 @@ typedef struct reflect_field_desc {
  * not one the tables know. */
 bool reflect_scalar_spelling(idl_type_t type, const char** kind, const char** c_type);
 
+/* `type_spec` with aliases and forward declarations looked through: the type a field really has. */
+const void* reflect_strip_type(const void* type_spec);
+
 /* Describes declarator `declarator` of `member` of the struct named `owner` (for messages).
  * Constructs the tables cannot describe (unions, enums, arrays of bounded strings, @optional, nested
  * sequences, multi-dimensional arrays, ...) are reported with idl_error() at their location;

@@ -18,10 +18,9 @@
 #include "hubrt/runtime/hub.h"
 #include "hubrt/runtime/text_buffer.h"
 
-#include "diagnostic_msgs.h"
-
-HUBRT_DDS_TOPIC_TYPE(diagnostic_msgs_msg_dds__DiagnosticArray_,
-                     diagnostic_msgs_msg_dds__DiagnosticArray__desc);
+// The message types with their DDS registration, generated once (a second registration here
+// clashed with it wherever both headers met, as in a unity source).
+#include "diagnostic_msgs_typed.h"
 
 namespace hubrt::assembly {
 
