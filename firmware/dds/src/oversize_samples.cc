@@ -17,7 +17,7 @@ namespace {
 constexpr std::string_view kDropPrefix = "dropping oversize (";
 
 std::atomic<std::uint64_t> g_dropped{0};
-std::atomic<bool> g_installed{false};
+std::atomic<bool> g_oversize_counted{false};
 std::atomic<bool> g_sink_installed{false};
 std::atomic<CycloneLogForward> g_forward{nullptr};
 
@@ -65,7 +65,7 @@ bool is_oversize_drop_message(std::string_view message) noexcept {
 }
 
 void count_oversize_samples() noexcept {
-  if (g_installed.exchange(true, std::memory_order_acq_rel)) return;
+  if (g_oversize_counted.exchange(true, std::memory_order_acq_rel)) return;
   detail::install_process_log_sink();
 }
 
@@ -74,7 +74,7 @@ void forward_cyclone_log(CycloneLogForward forward) noexcept {
 }
 
 bool oversize_samples_counted() noexcept {
-  return g_installed.load(std::memory_order_acquire);
+  return g_oversize_counted.load(std::memory_order_acquire);
 }
 
 std::uint64_t oversize_samples_dropped() noexcept {

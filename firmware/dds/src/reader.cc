@@ -4,6 +4,7 @@
 
 #include "hubrt/dds/retcode.h"
 
+#include "listener.h"
 #include "matched_count.h"
 
 namespace hubrt::dds {
@@ -15,16 +16,12 @@ void invoke_data_available(dds_entity_t /*reader*/, void* arg) noexcept {
   (*static_cast<DataAvailableCallback*>(arg))();
 }
 
-struct ListenerDeleter {
-  void operator()(dds_listener_t* listener) const noexcept { dds_delete_listener(listener); }
-};
-
 }  // namespace
 
 Expected<UntypedReader> UntypedReader::create(const Participant& participant, const UntypedTopic& topic,
                                               const Qos& qos, DataAvailableCallback on_data_available) {
   std::unique_ptr<DataAvailableCallback> callback;
-  std::unique_ptr<dds_listener_t, ListenerDeleter> listener;
+  detail::ListenerPtr listener;
   if (on_data_available) {
     callback = std::make_unique<DataAvailableCallback>(std::move(on_data_available));
     listener.reset(dds_create_listener(callback.get()));

@@ -107,7 +107,7 @@ State& state() noexcept {
   return s;
 }
 
-std::atomic<bool> g_installed{false};
+std::atomic<bool> g_refusals_counted{false};
 std::atomic<std::uint64_t> g_participants{0};
 std::atomic<std::uint64_t> g_writers{0};
 std::atomic<std::uint64_t> g_readers{0};
@@ -202,7 +202,7 @@ namespace detail {
 
 bool observe_security_log(std::string_view file, std::string_view function,
                           std::string_view message) noexcept {
-  if (!g_installed.load(std::memory_order_acquire)) return false;
+  if (!g_refusals_counted.load(std::memory_order_acquire)) return false;
   const RefusalLine line = classify_security_log(file, function, message);
   if (line.what == RefusedWhat::kNothing) return false;
   const bool unsecured = message.starts_with("Non secure remote ");
@@ -236,7 +236,7 @@ bool observe_security_log(std::string_view file, std::string_view function,
 }
 
 void report_refusal(RefusedWhat what, std::string_view reason) noexcept {
-  if (!g_installed.load(std::memory_order_acquire) || what == RefusedWhat::kNothing) return;
+  if (!g_refusals_counted.load(std::memory_order_acquire) || what == RefusedWhat::kNothing) return;
   State& s = state();
   const std::lock_guard lock(s.mutex);
   s.last_reason_size = copy_printable(reason, s.last_reason.data(), s.last_reason.size());
@@ -246,12 +246,12 @@ void report_refusal(RefusedWhat what, std::string_view reason) noexcept {
 }  // namespace detail
 
 void count_security_refusals() noexcept {
-  if (g_installed.exchange(true, std::memory_order_acq_rel)) return;
+  if (g_refusals_counted.exchange(true, std::memory_order_acq_rel)) return;
   detail::install_process_log_sink();
 }
 
 bool security_refusals_counted() noexcept {
-  return g_installed.load(std::memory_order_acquire);
+  return g_refusals_counted.load(std::memory_order_acquire);
 }
 
 SecurityRefusalCounts security_refusals() noexcept {

@@ -6,18 +6,12 @@
 #include "hubrt/dds/retcode.h"
 #include "hubrt/dds/sample.h"
 
+#include "listener.h"
 #include "matched_count.h"
 #include "serdata_pool.h"
 #include "sertype_probe.h"
 
 namespace hubrt::dds {
-namespace {
-
-struct ListenerDeleter {
-  void operator()(dds_listener_t* listener) const noexcept { dds_delete_listener(listener); }
-};
-
-}  // namespace
 
 // Runs on Cyclone's discovery thread, under the writer's observer lock (dds_writer.c,
 // dds_writer_status_cb -> status_cb_publication_matched in Cyclone 0.10): must not block.
@@ -39,7 +33,7 @@ Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, co
                                               const Qos& qos, ReaderMatchedCallback on_reader_matched) {
   auto matches = std::make_unique<MatchWatch>();
   matches->callback = std::move(on_reader_matched);
-  const std::unique_ptr<dds_listener_t, ListenerDeleter> listener(dds_create_listener(matches.get()));
+  const detail::ListenerPtr listener(dds_create_listener(matches.get()));
   dds_lset_publication_matched(listener.get(), &UntypedWriter::on_publication_matched);
   // Cyclone copies the listener, so ours can go when this returns.
   const dds_entity_t handle =

@@ -16,7 +16,7 @@
 namespace hubrt::hubctl {
 namespace {
 
-constexpr std::size_t kMaxNameLength = 63;
+constexpr std::size_t kMaxStationNameLength = 63;
 
 // The station's domain from `domain:`, from its station file, or both (then they must agree).
 Expected<std::uint32_t> station_domain(const config::YamlMap& map, const std::string& network,
@@ -62,7 +62,7 @@ Expected<PlantFile> plant_from_root(const Expected<config::YamlMap>& root) {
       return map.error(fmt::format(
           "station name '{}' must be a letter, then up to {} letters, digits or '_' (it names the "
           "station's topics in the tools)",
-          name, kMaxNameLength - 1));
+          name, kMaxStationNameLength - 1));
     }
     if (auto ok = map.only_keys({"domain", "network"}); !ok) return std::move(ok).error();
     auto network = map.string_or("network", "");
@@ -84,7 +84,7 @@ Expected<PlantFile> plant_from_root(const Expected<config::YamlMap>& root) {
 }  // namespace
 
 bool is_station_name(std::string_view name) noexcept {
-  return name.size() <= kMaxNameLength && config::is_ros_name_token(name);
+  return name.size() <= kMaxStationNameLength && config::is_ros_name_token(name);
 }
 
 Expected<PlantFile> load_plant_file(const std::string& path) {

@@ -45,7 +45,7 @@ std::string_view next_word(std::string_view& rest) {
   return word;
 }
 
-bool is_name_char(char c) {
+bool is_field_name_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
 }
 
@@ -55,7 +55,7 @@ Expected<std::vector<PathPart>> parse_path(std::string_view path) {
   while (true) {
     PathPart part;
     std::size_t n = 0;
-    while (n < rest.size() && is_name_char(rest[n])) ++n;
+    while (n < rest.size() && is_field_name_char(rest[n])) ++n;
     if (n == 0) {
       return make_error(ErrorCode::kInvalidArgument,
                         fmt::format("malformed field path '{}': expected a field "
@@ -182,8 +182,8 @@ bool element_matches(const nlohmann::ordered_json& element, const std::string& v
   return false;
 }
 
-Verdict broken(std::string detail) {
-  return Verdict{false, true, std::move(detail)};
+PredicateVerdict broken(std::string detail) {
+  return PredicateVerdict{false, true, std::move(detail)};
 }
 
 }  // namespace
@@ -221,14 +221,14 @@ Expected<Predicate> parse_predicate(std::string_view text) {
   return out;
 }
 
-Verdict evaluate(const Predicate& predicate, const nlohmann::ordered_json& state) {
+PredicateVerdict evaluate(const Predicate& predicate, const nlohmann::ordered_json& state) {
   std::string why;
   const nlohmann::ordered_json* field = resolve(predicate.path, state, why);
   if (field == nullptr) return broken(std::move(why));
   const std::string shown = safe_dump(*field);
   const std::string path = predicate.text.substr(0, predicate.text.find_first_of(" \t"));
   const auto verdict = [&](bool holds) {
-    return Verdict{holds, false, fmt::format("{} is {}", path, shown)};
+    return PredicateVerdict{holds, false, fmt::format("{} is {}", path, shown)};
   };
   switch (predicate.op) {
     case Operator::kEmpty:

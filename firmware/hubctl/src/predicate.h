@@ -43,7 +43,7 @@ struct Predicate {
 // them), a value missing or given where none belongs, a malformed path. Thread-safe.
 Expected<Predicate> parse_predicate(std::string_view text);
 
-struct Verdict {
+struct PredicateVerdict {
   bool holds = false;
   // Cannot be evaluated at all (no such field, operator does not fit the field's type): waiting
   // longer will not help.
@@ -52,6 +52,6 @@ struct Verdict {
 };
 
 // Evaluates `predicate` on a State converted to JSON (msgs::to_json). Thread-safe.
-Verdict evaluate(const Predicate& predicate, const nlohmann::ordered_json& state);
+PredicateVerdict evaluate(const Predicate& predicate, const nlohmann::ordered_json& state);
 
 }  // namespace hubrt::hubctl

@@ -67,7 +67,7 @@ struct Check {
 };
 Check check(const std::vector<Predicate>& conditions, const nlohmann::ordered_json& state) {
   for (const Predicate& condition : conditions) {
-    const Verdict verdict = evaluate(condition, state);
+    const PredicateVerdict verdict = evaluate(condition, state);
     if (!verdict.holds)
       return Check{false, verdict.broken, fmt::format("{}: {}", condition.text, verdict.detail)};
   }

@@ -15,25 +15,25 @@ namespace {
 // Discovery/ParticipantIndex: "a non-negative integer less than 120").
 constexpr int kMaxCycloneParticipantIndex = 119;
 constexpr int kMaxUdpPort = 65535;
-constexpr std::size_t kMaxNameLength = 63;
+constexpr std::size_t kMaxPlainNameLength = 63;
 
-bool is_name_char(char c) {
+bool is_plain_name_char(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
 }
 
 // Host and process names go into XML comments and namespace names: short, plain, no "--" (which
 // an XML comment may not contain).
 bool is_plain_name(std::string_view name) {
-  return !name.empty() && name.size() <= kMaxNameLength &&
-         std::all_of(name.begin(), name.end(), is_name_char) && name.find("--") == std::string_view::npos &&
-         name.front() != '-';
+  return !name.empty() && name.size() <= kMaxPlainNameLength &&
+         std::all_of(name.begin(), name.end(), is_plain_name_char) &&
+         name.find("--") == std::string_view::npos && name.front() != '-';
 }
 
 // Linux interface names: at most 15 bytes (IFNAMSIZ - 1), no '/', no blanks; kept to what
-// is_name_char allows plus '.' and ':' (VLANs, aliases).
+// is_plain_name_char allows plus '.' and ':' (VLANs, aliases).
 bool is_interface_name(std::string_view name) {
   return !name.empty() && name.size() <= 15 && std::all_of(name.begin(), name.end(), [](char c) {
-    return is_name_char(c) || c == '.' || c == ':';
+    return is_plain_name_char(c) || c == '.' || c == ':';
   });
 }
 
@@ -48,7 +48,7 @@ Expected<StationHost> load_host(const std::string& name, const config::YamlMap& 
   host.line = static_cast<int>(map.node().Mark().line) + 1;
   if (!is_plain_name(name)) {
     return map.error(fmt::format("host name '{}' must be 1 to {} letters, digits, '-' or '_' (not '--')",
-                                 name, kMaxNameLength));
+                                 name, kMaxPlainNameLength));
   }
   if (auto ok = map.only_keys({"address", "interface", "runs"}); !ok) return std::move(ok).error();
   auto address = map.string("address");

@@ -19,7 +19,7 @@ const nlohmann::ordered_json kState = nlohmann::ordered_json::parse(R"({
   "lift_mm": null
 })");
 
-Verdict eval(std::string_view text) {
+PredicateVerdict eval(std::string_view text) {
   auto predicate = parse_predicate(text);
   EXPECT_TRUE(predicate) << predicate.error().message;
   if (!predicate) return {};
@@ -27,7 +27,7 @@ Verdict eval(std::string_view text) {
 }
 
 bool holds(std::string_view text) {
-  const Verdict v = eval(text);
+  const PredicateVerdict v = eval(text);
   EXPECT_FALSE(v.broken) << text << ": " << v.detail;
   return v.holds;
 }
@@ -73,19 +73,19 @@ TEST(Predicate, ListsContainSubstringsOrAreEmpty) {
 }
 
 TEST(Predicate, TheVerdictShowsTheValue) {
-  const Verdict v = eval("at == home");
+  const PredicateVerdict v = eval("at == home");
   EXPECT_FALSE(v.holds);
   EXPECT_EQ(v.detail, "at is \"float\"");
 }
 
 TEST(Predicate, AFieldThatIsNotThereCannotBeWaitedFor) {
-  const Verdict missing = eval("positon_mm > 3");
+  const PredicateVerdict missing = eval("positon_mm > 3");
   EXPECT_TRUE(missing.broken);
   EXPECT_THAT(missing.detail, HasSubstr("no field 'positon_mm' (fields: name, fresh_msg"));
-  const Verdict nested = eval("last_result.angle > 3");
+  const PredicateVerdict nested = eval("last_result.angle > 3");
   EXPECT_TRUE(nested.broken);
   EXPECT_THAT(nested.detail, HasSubstr("no field 'angle' in 'last_result'"));
-  const Verdict no_slot = eval("slots[filter_tool].occupied == true");
+  const PredicateVerdict no_slot = eval("slots[filter_tool].occupied == true");
   EXPECT_TRUE(no_slot.broken);
   EXPECT_THAT(no_slot.detail,
               HasSubstr("no element named 'filter_tool' (names: ladder_frame_tool, smart_tool)"));

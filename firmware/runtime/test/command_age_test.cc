@@ -18,7 +18,7 @@ namespace {
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-constexpr Duration kTimeout = seconds(1);
+constexpr Duration kCommandTimeout = seconds(1);
 constexpr Duration kTolerance = milliseconds(50);
 
 WallTime minus(WallTime t, Duration d) {
@@ -27,7 +27,7 @@ WallTime minus(WallTime t, Duration d) {
 
 TEST(CommandAgeJudge, JudgesByTheSourceStampAgainstTheHubsWallClock) {
   ManualClock clock;
-  CommandAgeJudge judge(kTimeout, kTolerance);
+  CommandAgeJudge judge(kCommandTimeout, kTolerance);
   const Instant now = clock.now();
   const auto judged = [&](Duration age) {
     return judge.judge(CommandTimes{minus(now.wall, age), now, std::nullopt});
@@ -36,8 +36,8 @@ TEST(CommandAgeJudge, JudgesByTheSourceStampAgainstTheHubsWallClock) {
   const JudgedAge young = judged(milliseconds(900));
   EXPECT_EQ(young.verdict, AgeVerdict::kYoung);
   EXPECT_EQ(young.written, now.mono - milliseconds(900)) << "freshness counts from the write";
-  EXPECT_EQ(judged(kTimeout).verdict, AgeVerdict::kYoung) << "exactly the timeout is still young";
-  EXPECT_EQ(judged(kTimeout + milliseconds(1)).verdict, AgeVerdict::kStale);
+  EXPECT_EQ(judged(kCommandTimeout).verdict, AgeVerdict::kYoung) << "exactly the timeout is still young";
+  EXPECT_EQ(judged(kCommandTimeout + milliseconds(1)).verdict, AgeVerdict::kStale);
   EXPECT_EQ(judged(seconds(10)).verdict, AgeVerdict::kStale);
 
   const JudgedAge slightly_ahead = judged(-milliseconds(30));
@@ -59,7 +59,7 @@ TEST(CommandAgeJudge, JudgesByTheSourceStampAgainstTheHubsWallClock) {
 // source made at the take, such a command is young; against the cycle's, it looked 0.1 s ahead.
 TEST(CommandAgeJudge, JudgesAgainstTheHubsWallClockAtTheTakeNotTheCyclesEarlierReading) {
   ManualClock clock;
-  CommandAgeJudge judge(kTimeout, kTolerance);
+  CommandAgeJudge judge(kCommandTimeout, kTolerance);
   const Instant cycle = clock.now();
   clock.advance(milliseconds(103));  // the cycle thread is preempted
   const WallTime written = minus(clock.now().wall, milliseconds(1));
@@ -83,7 +83,7 @@ TEST(CommandAgeJudge, JudgesAgainstTheHubsWallClockAtTheTakeNotTheCyclesEarlierR
 
 TEST(CommandAgeJudge, UnsyncedClocksJudgeNoAgeButStillDiscardWhatQueuedInAStall) {
   ManualClock clock;
-  CommandAgeJudge judge(kTimeout, std::nullopt);
+  CommandAgeJudge judge(kCommandTimeout, std::nullopt);
   const Instant now = clock.now();
   EXPECT_EQ(judge.judge(CommandTimes{minus(now.wall, seconds(10)), now, std::nullopt}).verdict,
             AgeVerdict::kYoung);
@@ -103,7 +103,7 @@ class CommandAgeNodeTest : public ::testing::Test {
   void make_node(ClockTolerance tolerance) {
     NodeOptions options;
     options.name = "v1";
-    options.command_timeout = kTimeout;
+    options.command_timeout = kCommandTimeout;
     options.clock_tolerance = tolerance;
     node_ = std::make_unique<Node<ValveLogic>>(options, ValveLogic(world_), source_, sink_, ops_);
   }
@@ -207,7 +207,7 @@ TEST_F(CommandAgeNodeTest, WithUnsyncedClocksSkewedPlannersActAsOnArrival) {
   EXPECT_EQ(node_->lifecycle().state(), Lifecycle::kOperational) << "clock_tolerance_ms: none judges no age";
   EXPECT_TRUE(state().fresh_msg);
   EXPECT_FLOAT_EQ(state().t_plus, 0.0f);
-  clock_.advance(kTimeout + milliseconds(1));
+  clock_.advance(kCommandTimeout + milliseconds(1));
   step();
   EXPECT_FALSE(state().fresh_msg) << "the watchdog counts from the arrival then";
   EXPECT_EQ(node_->commands_stale(), 0u);
@@ -230,7 +230,7 @@ TEST_F(CommandAgeNodeTest, TheObserverSeesEachCommandsTimesAndOutcome) {
   recorder.seen.reserve(8);
   NodeOptions options;
   options.name = "v1";
-  options.command_timeout = kTimeout;
+  options.command_timeout = kCommandTimeout;
   options.command_observer = &recorder;
   node_ = std::make_unique<Node<ValveLogic>>(options, ValveLogic(world_), source_, sink_, ops_);
   send_open(milliseconds(200));

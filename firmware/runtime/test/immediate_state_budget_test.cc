@@ -25,9 +25,9 @@ using std::chrono::milliseconds;
 
 // Records when each State was published, what it echoed and whether the heartbeat published it
 // (the test sets `in_cycle` around Hub::cycle()).
-class RecordingSink final : public StateSink<ValveState> {
+class EchoRecordingSink final : public StateSink<ValveState> {
  public:
-  explicit RecordingSink(const ManualClock& clock) : clock_(clock) {}
+  explicit EchoRecordingSink(const ManualClock& clock) : clock_(clock) {}
   Status publish(const ValveState& state) noexcept override {
     published.push_back({clock_.now().mono, std::string(state.echo.action), in_cycle});
     return Status::ok();
@@ -89,7 +89,7 @@ class BudgetTest : public ::testing::Test {
   ManualClock clock_;
   ValveWorld world_;
   QueueSource source_;
-  RecordingSink sink_{clock_};
+  EchoRecordingSink sink_{clock_};
   ReflectedMessageOps ops_{msgs::type_info_of<ValveCommand>()};
   Hub hub_{HubOptions{"test", "hub", kStatePeriod, nullptr}};
   Node<ValveLogic>* node_ = nullptr;

@@ -52,9 +52,9 @@ struct Published {
   bool fresh_msg;
   bool open;
 };
-class RecordingSink final : public StateSink<ValveState> {
+class LifecycleRecordingSink final : public StateSink<ValveState> {
  public:
-  explicit RecordingSink(const ManualClock& clock) : clock_(clock) {}
+  explicit LifecycleRecordingSink(const ManualClock& clock) : clock_(clock) {}
   Status publish(const ValveState& state) noexcept override {
     states.push_back(Published{clock_.now().mono, state.header.lifecycle, state.fresh_msg, state.open});
     return Status::ok();
@@ -101,7 +101,7 @@ class StaleAfterStallTest : public ::testing::TestWithParam<ClockTolerance> {
   const Time start_ = clock_.now().mono;
   ValveWorld world_;
   QueueSource source_;
-  RecordingSink sink_{clock_};
+  LifecycleRecordingSink sink_{clock_};
   ReflectedMessageOps ops_{msgs::type_info_of<ValveCommand>()};
   Duration longest_late_{0};
   std::uint64_t commands_stale_ = 0;

@@ -1,6 +1,7 @@
 #include "board_parse.h"
 
 #include <algorithm>
+#include <array>
 
 #include <fmt/format.h>
 
@@ -41,6 +42,16 @@ bool valid_identifier(std::string_view name) noexcept {
 
 std::string declared_at(std::string_view what, std::string_view name, SourceLocation where) {
   return fmt::format("{} '{}' (line {})", what, name, where.line);
+}
+
+Expected<std::int64_t> serial_baud(const YamlMap& map, std::int64_t fallback) {
+  static constexpr std::array<std::int64_t, 8> kRates = {1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200};
+  auto baud = map.integer_or("baud", fallback, kRates.front(), kRates.back());
+  if (!baud) return std::move(baud).error();
+  if (std::find(kRates.begin(), kRates.end(), *baud) == kRates.end()) {
+    return map.error_at("baud", fmt::format("{} is not a standard baud rate (1200 ... 115200)", *baud));
+  }
+  return baud;
 }
 
 }  // namespace hubrt::hal::board_detail

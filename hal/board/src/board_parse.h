@@ -1,6 +1,7 @@
 // Helpers shared by the board loader's section parsers.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -23,6 +24,10 @@ bool valid_identifier(std::string_view name) noexcept;
 
 // "input 'x' (line 9)": how messages refer to an earlier declaration.
 std::string declared_at(std::string_view what, std::string_view name, SourceLocation where);
+
+// `baud:` of a serial line (Modbus RTU, RFID readers): one of the standard rates 1200 ... 115200,
+// `fallback` when absent.
+Expected<std::int64_t> serial_baud(const YamlMap& map, std::int64_t fallback);
 
 Expected<void> parse_gpio(const YamlMap& gpio, BoardConfig& board);
 Expected<void> parse_can(const YamlMap& root, BoardConfig& board);

@@ -1,6 +1,5 @@
 // can: and modbus:.
 #include <algorithm>
-#include <array>
 
 #include <fmt/format.h>
 
@@ -12,7 +11,6 @@ namespace {
 constexpr std::int64_t kMaxStandardId = 0x7FF;
 constexpr std::int64_t kMaxExtendedId = 0x1FFF'FFFF;
 constexpr std::size_t kMaxInterfaceName = 15;  // IFNAMSIZ - 1
-constexpr std::array<std::int64_t, 8> kBaudRates = {1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200};
 
 bool valid_interface(std::string_view name) noexcept {
   return !name.empty() && name.size() <= kMaxInterfaceName &&
@@ -93,11 +91,8 @@ Expected<ModbusRtuEndpoint> parse_rtu(const YamlMap& map) {
   if (!device->starts_with("/dev/")) {
     return map.error_at("device", fmt::format("'{}' is not a serial device path (/dev/...)", *device));
   }
-  auto baud = map.integer_or("baud", 19200, 1200, 115200);
+  auto baud = serial_baud(map, 19200);
   if (!baud) return std::move(baud).error();
-  if (std::find(kBaudRates.begin(), kBaudRates.end(), *baud) == kBaudRates.end()) {
-    return map.error_at("baud", fmt::format("{} is not a standard baud rate (1200 ... 115200)", *baud));
-  }
   auto parity = map.choice_or("parity", "E", {"N", "E", "O"});
   if (!parity) return std::move(parity).error();
   auto data_bits = map.integer_or("data_bits", 8, 5, 8);

@@ -1,6 +1,4 @@
 // rfid: RFID badge readers, each either a Linux input device (keyboard wedge) or a serial port.
-#include <algorithm>
-#include <array>
 
 #include <fmt/format.h>
 
@@ -8,8 +6,6 @@
 
 namespace hubrt::hal::board_detail {
 namespace {
-
-constexpr std::array<std::int64_t, 8> kBaudRates = {1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200};
 
 Expected<std::string> device_path(const YamlMap& map, std::string_view prefix, std::string_view what) {
   auto device = map.string("device");
@@ -36,11 +32,8 @@ Expected<void> parse_serial(const YamlMap& map, BadgeReaderConfig& config) {
   if (auto ok = map.only_keys({"device", "baud", "terminator"}); !ok) return std::move(ok).error();
   auto device = device_path(map, "/dev/", "a serial device path");
   if (!device) return std::move(device).error();
-  auto baud = map.integer_or("baud", 9600, 1200, 115200);
+  auto baud = serial_baud(map, 9600);
   if (!baud) return std::move(baud).error();
-  if (std::find(kBaudRates.begin(), kBaudRates.end(), *baud) == kBaudRates.end()) {
-    return map.error_at("baud", fmt::format("{} is not a standard baud rate (1200 ... 115200)", *baud));
-  }
   auto terminator = map.choice_or("terminator", "cr", {"cr", "lf"});
   if (!terminator) return std::move(terminator).error();
   config.kind = BadgeReaderKind::kSerial;
