@@ -77,12 +77,13 @@ function(hubrt_target_defaults target)
     $<$<COMPILE_LANGUAGE:CXX>:${HUBRT_WARNINGS}>
     $<$<COMPILE_LANGUAGE:C>:${HUBRT_C_WARNINGS}>
     $<$<BOOL:${HUBRT_WERROR}>:-Werror>)
-  # HUBRT_UNITY_LIBRARIES (the sanitizer presets): a library's files compiled as unity sources of up
-  # to 8, as HUBRT_UNITY_TESTS does for the test programs, and for the same reason: the precompiled
-  # header saves parsing, not instantiating and generating the same templates in every file
-  # (docs/ci.md, "Libraries as unity sources"). Not the PCH's host (CMake cannot then resolve the
-  # header the libraries reuse), and not what ships: the release and cross builds compile file by
-  # file, as the board sizes were measured (docs/board-size.md).
+  # HUBRT_UNITY_LIBRARIES (the sanitizer, fuzz and cross presets): a library's files compiled as
+  # unity sources of up to 8, as HUBRT_UNITY_TESTS does for the test programs, and for the same
+  # reason: the precompiled header saves parsing, not instantiating and generating the same
+  # templates in every file (docs/ci.md, "Libraries as unity sources"). Not the PCH's host (CMake
+  # cannot then resolve the header the libraries reuse). The cross builds, which the board
+  # packages come from, too: what that did to the board programs' sizes is in docs/board-size.md.
+  # host-release and host-debug compile file by file.
   if(HUBRT_UNITY_LIBRARIES AND _type MATCHES "^(STATIC|SHARED|OBJECT|MODULE)_LIBRARY$"
      AND NOT target STREQUAL "hubrt_library_pch")
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON)
@@ -92,6 +93,15 @@ function(hubrt_target_defaults target)
     # needs, they would be linked twice (lld: duplicate symbol __ubsan_default_options).
     set_source_files_properties(${HUBRT_PROGRAM_ONLY_SOURCES} TARGET_DIRECTORY ${target}
                                 PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+  endif()
+  # GCC's -Wsubobject-linkage is for a class defined in a header whose member's type is in an
+  # anonymous namespace (each file including it would define a different class). A unity source
+  # includes the .cc files, so GCC takes a class defined in one for a header's (the cross build:
+  # LiftDriveServer::Session in hal/fake/modbus). host-debug compiles file by file with GCC and
+  # keeps the warning for real headers.
+  get_target_property(_unity ${target} UNITY_BUILD)
+  if(_unity AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wno-subobject-linkage>)
   endif()
 endfunction()
 get_filename_component(_hubrt_dds_src "${CMAKE_CURRENT_LIST_DIR}/../../firmware/dds/src" ABSOLUTE)
