@@ -167,6 +167,11 @@ Qos& Qos::lifespan(Duration lifespan) {
   return *this;
 }
 
+Qos& Qos::dispose_on_unregister(bool dispose) {
+  dds_qset_writer_data_lifecycle(qos_, dispose);
+  return *this;
+}
+
 Qos& Qos::keep_all() {
   dds_qset_history(qos_, DDS_HISTORY_KEEP_ALL, DDS_LENGTH_UNLIMITED);
   return *this;

@@ -42,7 +42,7 @@ Expected<UntypedWriter> UntypedWriter::create(const Participant& participant, co
     return dds_error(
         handle, "create writer on '" + topic.dds_name() + "' in domain " + std::to_string(topic.domain_id()));
   }
-  UntypedWriter writer(std::move(matches), EntityHandle(handle), topic.dds_name());
+  UntypedWriter writer(std::move(matches), EntityHandle(handle), topic.dds_name(), &topic.descriptor());
   // A keyless topic has one instance. Registering it now keeps Cyclone's instance entry alive
   // for the writer's lifetime; otherwise, while no reader holds it, every write() creates and
   // garbage-collects it again (measured: about 3 heap allocations per write). The write pool
@@ -138,6 +138,20 @@ Result<std::uint32_t> UntypedWriter::matched_readers() const noexcept {
 Expected<void> UntypedWriter::wait_for_readers(std::uint32_t count, Duration timeout) const {
   return detail::wait_for_matched(handle_.get(), detail::EndpointKind::kWriter, count, timeout,
                                   "wait for readers of writer on '" + topic_name_ + "'");
+}
+
+Status UntypedWriter::announce() const {
+  if (descriptor_->m_nkeys != 0) return Status(ErrorCode::kFailedPrecondition);
+  dds_qos_t* qos = dds_create_qos();
+  bool disposes = true;
+  const dds_return_t got = dds_get_qos(handle_.get(), qos);
+  if (got == DDS_RETCODE_OK) (void)dds_qget_writer_data_lifecycle(qos, &disposes);
+  dds_delete_qos(qos);
+  if (got != DDS_RETCODE_OK) return to_status(got);
+  if (disposes) return Status(ErrorCode::kFailedPrecondition);
+  // Keyless: every sample is the one instance, so a zeroed one names it.
+  const UntypedSample any_sample(*descriptor_);
+  return to_status(dds_unregister_instance(handle_.get(), any_sample.data()));
 }
 
 Expected<void> UntypedWriter::wait_for_acks(Duration timeout) const {

@@ -74,6 +74,10 @@ class Qos {
   // only when the reader runs again) nor against skewed clocks: hubd judges the source timestamp
   // itself (runtime/command_age.h). Precondition: lifespan > 0.
   Qos& lifespan(Duration lifespan);
+  // WRITER_DATA_LIFECYCLE (local to the writer, not announced): whether unregistering an instance
+  // also disposes it. Cyclone's default is yes, so a writer's unregistration of a keyless topic's
+  // one instance would mark it disposed at every reader; UntypedWriter::announce needs no.
+  Qos& dispose_on_unregister(bool dispose);
 
   // For Cyclone calls; valid while this Qos lives.
   [[nodiscard]] const dds_qos_t* get() const noexcept { return qos_; }

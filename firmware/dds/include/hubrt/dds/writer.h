@@ -109,6 +109,24 @@ class UntypedWriter {
   // Cyclone's code for a deleted writer.
   Expected<void> wait_for_acks(Duration timeout) const;
 
+  // Writes a sample that carries no data, the unregistration of the keyless topic's one instance,
+  // so that wait_for_acks() then shows every reader matched now has heard this writer and will
+  // get what it writes next. Why a writer needs that: matching is two-sided, and a reader that
+  // the writer matched before the reader matched the writer back drops whatever the writer wrote
+  // until then, and acknowledges it. Cyclone 0.10.2 starts a volatile reader from the writer's
+  // first heartbeat it hears, treating every sequence number up to that heartbeat's last one as
+  // a gap (src/core/ddsi/src/q_receive.c, handle_Heartbeat: gap_end_seq = lastseq + 1 while
+  // !pwr->have_seen_heartbeat), and ignores data from a writer before that (handle_regular).
+  // Acknowledging this sample, by data or by gap, needs that heartbeat, so once every reader has,
+  // the next sample reaches them all. Readers take nothing from it: Cyclone's reader ignores an
+  // unregistration from a writer it holds no registration of (dds_rhc_default.c,
+  // rhc_unregister_delete_registration: "unknown"), and a reader that had this writer's samples
+  // gets an invalid sample (valid_data false), which every hubrt reader and ROS 2 skip.
+  // For tools that write a sample once; not for the cycle (allocates). Errors: kFailedPrecondition
+  // for a keyed topic, or a writer whose QoS disposes on unregister (Qos::dispose_on_unregister:
+  // every reader would see the instance disposed); Cyclone's code of the write.
+  Status announce() const;
+
   [[nodiscard]] dds_entity_t handle() const noexcept { return handle_.get(); }
   [[nodiscard]] const std::string& topic_name() const noexcept { return topic_name_; }
 
@@ -131,8 +149,12 @@ class UntypedWriter {
     void operator()(detail::SerdataPool* pool) const noexcept;
   };
 
-  UntypedWriter(std::unique_ptr<MatchWatch> matches, EntityHandle handle, std::string topic_name) noexcept
-      : matches_(std::move(matches)), handle_(std::move(handle)), topic_name_(std::move(topic_name)) {}
+  UntypedWriter(std::unique_ptr<MatchWatch> matches, EntityHandle handle, std::string topic_name,
+                const dds_topic_descriptor_t* descriptor) noexcept
+      : matches_(std::move(matches)),
+        handle_(std::move(handle)),
+        topic_name_(std::move(topic_name)),
+        descriptor_(descriptor) {}
 
   // Declared before handle_ so that it is destroyed after the writer it is the listener of.
   std::unique_ptr<MatchWatch> matches_;
@@ -141,6 +163,7 @@ class UntypedWriter {
   // instance registration then); serdata Cyclone still holds keep the pool itself alive.
   std::unique_ptr<detail::SerdataPool, PoolRelease> pool_;
   std::string topic_name_;
+  const dds_topic_descriptor_t* descriptor_;  // static, generated: outlives every writer
   SampleHook* hook_ = nullptr;
 };
 
