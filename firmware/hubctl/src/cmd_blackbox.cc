@@ -56,7 +56,9 @@ int run_blackbox(const BlackBoxOptions& options) {
     return kExitFailed;
   }
   auto reader = dds::Reader<KeyValue>::create(*participant, *reply_topic, dds::Qos::ros2_default(100));
-  auto writer = dds::Writer<KeyValue>::create(*participant, *request_topic);
+  dds::Qos request_qos = dds::Qos::ros2_default();
+  request_qos.dispose_on_unregister(false);  // so that greet_readers can announce it
+  auto writer = dds::Writer<KeyValue>::create(*participant, *request_topic, request_qos);
   if (!reader || !writer) {
     fmt::print(stderr, "hubctl blackbox: {}\n", (!reader ? reader.error() : writer.error()).message);
     return kExitFailed;
@@ -67,6 +69,13 @@ int run_blackbox(const BlackBoxOptions& options) {
   wait.wanted = 1;
   wait.timeout = seconds(options.domain.timeout_s);
   auto readers = wait_for_readers(writer->untyped(), wait, *request_topic_name);
+  // The request goes once: the hub's reader must have heard this writer, not only be matched.
+  if (readers && !readers->interrupted) {
+    if (auto greeted = greet_readers(writer->untyped(), wait.timeout, *request_topic_name); !greeted)
+      readers = std::move(greeted).error();
+    else
+      readers = *greeted;
+  }
   if (!readers || readers->interrupted) {
     fmt::print(stderr, "hubctl blackbox: {}\n",
                readers ? "interrupted"

@@ -120,6 +120,18 @@ int run_send(const SendOptions& options) {
   } else if (readers->interrupted) {
     fmt::print(stderr, "hubctl send: interrupted while waiting for readers of {}; nothing sent\n", *ros_name);
     return interrupted_exit_status();
+  } else if (limit != 0) {
+    // Matched is not yet heard: a reader that has not heard this writer would drop the sample.
+    auto greeted = greet_readers(*writer, seconds(options.domain.timeout_s), *ros_name);
+    if (!greeted) {
+      fmt::print(stderr, "hubctl send: {}; nothing sent\n", greeted.error().message);
+      return kExitFailed;
+    }
+    if (greeted->interrupted) {
+      fmt::print(stderr, "hubctl send: interrupted while waiting for readers of {}; nothing sent\n",
+                 *ros_name);
+      return interrupted_exit_status();
+    }
   }
   if (!options.quiet)
     fmt::print("sending {} ({}) at {} Hz:\n{}", *ros_name, info.ros_name, options.rate_hz,

@@ -18,9 +18,13 @@ namespace hubrt::hubctl {
 inline constexpr std::uint32_t kDefaultCommandLifespanMs = 1000;
 
 // ROS 2's default profile (reliable, volatile, keep-last 10), as a planner's command publisher,
-// with LIFESPAN `lifespan_ms` (0: none).
+// with LIFESPAN `lifespan_ms` (0: none). Unregistering does not dispose, as rmw_cyclonedds makes
+// every ROS 2 publisher (rmw_node.cpp, create_readwrite_qos): the writer can be announced
+// (greet_readers), and its end leaves readers "no writers" where Cyclone's default leaves
+// "disposed".
 inline dds::Qos command_writer_qos(std::uint32_t lifespan_ms = kDefaultCommandLifespanMs) {
   dds::Qos qos = dds::Qos::ros2_default();
+  qos.dispose_on_unregister(false);
   if (lifespan_ms > 0) qos.lifespan(std::chrono::milliseconds(lifespan_ms));
   return qos;
 }

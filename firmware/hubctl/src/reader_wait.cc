@@ -1,5 +1,6 @@
 #include "reader_wait.h"
 
+#include <algorithm>
 #include <thread>
 
 #include <fmt/format.h>
@@ -44,6 +45,33 @@ Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, cons
                                                          to_seconds(wait.timeout)));
     }
     std::this_thread::sleep_for(kPoll);
+  }
+}
+
+Expected<ReadersMatched> greet_readers(const dds::UntypedWriter& writer, Duration timeout,
+                                       const std::string& ros_topic, const std::function<void()>& between) {
+  using Clock = std::chrono::steady_clock;
+  constexpr auto kSlice = std::chrono::milliseconds(50);
+  if (const Status announced = writer.announce(); !announced.is_ok()) {
+    return make_error(announced.code(), fmt::format("cannot announce the writer of {} to its readers: {}",
+                                                    ros_topic, to_string(announced.code())));
+  }
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    const auto left = deadline - Clock::now();
+    auto acked = writer.wait_for_acks(std::min<Duration>(kSlice, std::max<Duration>(left, Duration::zero())));
+    const Result<std::uint32_t> matched = writer.matched_readers();
+    const std::uint32_t count = matched.is_ok() ? matched.value() : 0;
+    if (acked) return ReadersMatched{count, false};
+    if (acked.error().code != ErrorCode::kTimeout) return std::move(acked).error();
+    if (stop_requested()) return ReadersMatched{count, true};
+    if (between) between();
+    if (Clock::now() >= deadline) {
+      return make_error(
+          ErrorCode::kTimeout,
+          fmt::format("{} reader(s) of {} matched, but not every one heard this writer within {:.1f} s",
+                      count, ros_topic, to_seconds(timeout)));
+    }
   }
 }
 

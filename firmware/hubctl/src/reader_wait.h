@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -39,10 +40,23 @@ Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, cons
                                           const std::string& ros_topic);
 
 // Matching is two-sided: the writer can match a reader that starting up or a loaded machine keeps
-// from matching the writer back for a while. Cyclone 0.10.2 drops an unacknowledged sample from the
-// writer's history LIFESPAN after the write (dds::Qos::lifespan), and a reader that asks for it
-// later gets a gap, which it acknowledges like the sample. So "acknowledged" means "received" only
-// when it came within LIFESPAN of the write; `ack_delay` is that time for the last sample written.
+// from matching the writer back for a while, and such a reader drops, and acknowledges, whatever
+// the writer wrote before it heard the writer's first heartbeat (dds::UntypedWriter::announce).
+// So before the first sample of a run that is not repeated, hubctl announces its writer and waits,
+// at most `timeout`, until every reader matched has acknowledged that (polling, so that SIGINT and
+// SIGTERM are heard, and `between` runs between polls: the scenarios keep their readers drained).
+// The writer's QoS must not dispose on unregister (command_writer_qos).
+// Errors: kTimeout "<n> reader(s) of <topic> matched, but not every one heard this writer within
+// <t> s"; the announcement's refusal (kFailedPrecondition for a keyed topic or a disposing QoS).
+Expected<ReadersMatched> greet_readers(const dds::UntypedWriter& writer, Duration timeout,
+                                       const std::string& ros_topic,
+                                       const std::function<void()>& between = {});
+
+// Once heard, a reader can still lose a sample on the wire and ask for it again. Cyclone 0.10.2
+// drops an unacknowledged sample from the writer's history LIFESPAN after the write
+// (dds::Qos::lifespan), and a reader that asks for it later gets a gap, which it acknowledges like
+// the sample. So "acknowledged" means "received" only when it came within LIFESPAN of the write;
+// `ack_delay` is that time for the last sample written.
 // Returns the warning to print when it did not (`lifespan_ms` 0: no LIFESPAN, never).
 std::optional<std::string> late_acknowledgement(Duration ack_delay, std::uint32_t lifespan_ms);
 

@@ -11,6 +11,7 @@
 
 #include "command_channel.h"
 #include "command_qos.h"
+#include "reader_wait.h"
 #include "session.h"
 
 namespace hubrt::hubctl {
@@ -129,10 +130,18 @@ Expected<WriterEntry*> ScenarioTraffic::writer_with(const std::string& topic, co
     auto t = dds::UntypedTopic::create(participant_, *type.descriptor, topic);
     if (!t) return std::move(t).error();
     entry->topic.emplace(std::move(*t));
-    auto w = dds::UntypedWriter::create(participant_, *entry->topic, qos);
+    dds::Qos announcing = qos;
+    announcing.dispose_on_unregister(false);  // so that greet_readers can announce it
+    auto w = dds::UntypedWriter::create(participant_, *entry->topic, announcing);
     if (!w) return std::move(w).error();
     entry->writer.emplace(std::move(*w));
     it = writers_.emplace(topic, std::move(entry)).first;
+    if (auto matched = wait_for_readers(*it->second, readers); !matched) return std::move(matched).error();
+    // A step writes once: every reader matched should have heard the new writer first. One that
+    // has not within the discovery timeout (a stopped hub, in a test of one) does not hold up
+    // the others; a step that needs that hub's answer finds out by waiting for it.
+    (void)greet_readers(*it->second->writer, discovery_timeout_, topic, [this] { pump(); });
+    return it->second.get();
   }
   if (auto matched = wait_for_readers(*it->second, readers); !matched) return std::move(matched).error();
   return it->second.get();
