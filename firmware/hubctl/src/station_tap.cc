@@ -21,6 +21,8 @@ namespace {
 constexpr int kTakesPerTurn = 256;
 // The longest the thread sleeps without news: how soon it sees stop().
 constexpr auto kWaitBound = std::chrono::milliseconds(200);
+// How often the thread looks at the domain's writers while it waits for its first consumer.
+constexpr auto kConsumerPoll = std::chrono::milliseconds(20);
 
 WallTime wall_now() noexcept {
   return WallTime{std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -94,7 +96,11 @@ Expected<std::unique_ptr<StationTap>> StationTap::start(const dds::Participant& 
 }
 
 StationTap::~StationTap() {
-  stop_ = true;
+  {
+    const std::lock_guard lock(mutex_);  // so that the thread cannot miss it between test and wait
+    stop_ = true;
+  }
+  consumer_arrived_.notify_all();
   if (state_->waitset) (void)state_->waitset->wake();
   if (thread_.joinable()) thread_.join();
   watch_.reset();  // no callback after this (WriterWatch's destructor waits for them)
@@ -122,6 +128,7 @@ void StationTap::feed(std::shared_ptr<TapQueue> queue) {
     return;
   }
   queues_.push_back(std::move(queue));
+  consumer_arrived_.notify_all();
 }
 
 std::vector<std::shared_ptr<const TapTopic>> StationTap::topics() const {
@@ -293,6 +300,16 @@ void StationTap::run() noexcept {
   try {
     while (!stop_) {
       if (writers_changed_.exchange(false)) follow_writers(watch_->current());
+      {
+        // Consumers subscribe after start(): a sample taken before the first did would be lost
+        // (hubctl echo missed a fault written the moment its reader matched). Until one is there,
+        // the readers keep what comes (reader_depth); the waitset would only spin on their data.
+        std::unique_lock lock(mutex_);
+        if (queues_.empty()) {
+          consumer_arrived_.wait_for(lock, kConsumerPoll, [this] { return stop_ || !queues_.empty(); });
+          continue;
+        }
+      }
       (void)state_->waitset->wait(fired, kWaitBound);
       take_all();
     }

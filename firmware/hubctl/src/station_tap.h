@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -73,7 +74,8 @@ class StationTap {
   StationTap& operator=(const StationTap&) = delete;
 
   // A new consumer whose queue holds at most `sample_capacity` samples; it first gets a kTopic
-  // event for every topic the tap has now. Thread-safe.
+  // event for every topic the tap has now. The tap takes no sample before its first consumer is
+  // there: what came since start() waits in the readers (reader_depth). Thread-safe.
   std::unique_ptr<TapSubscription> subscribe(std::size_t sample_capacity);
   // The same into a queue other taps feed too (a plant-wide tap): the caller has counted this tap
   // among its producers (TapQueue::add_producer); the tap closes it once when it ends. Thread-safe.
@@ -109,7 +111,8 @@ class StationTap {
   std::atomic<bool> writers_changed_{true};
   std::atomic<bool> stop_{false};
 
-  mutable std::mutex mutex_;  // guards what consumers and the thread share:
+  mutable std::mutex mutex_;                  // guards what consumers and the thread share:
+  std::condition_variable consumer_arrived_;  // the first queue, or stop_: the thread takes only then
   std::vector<std::shared_ptr<TapQueue>> queues_;
   std::map<std::string, std::shared_ptr<const TapTopic>> topics_;
   std::set<std::string> written_;

@@ -4,6 +4,8 @@
 // writer goes is said to be gone; the default selection is the station's traffic.
 #include "station_tap.h"
 
+#include <thread>
+
 #include <gtest/gtest.h>
 
 #include "hubrt/dds/cdr_codec.h"
@@ -103,6 +105,31 @@ TEST_F(StationTapTest, ATopicThatAppearsLaterIsTakenAsTheBytesThatWereWritten) {
   // The writer goes: the topic is gone (and its last revision is what was announced).
   writer = make_error(ErrorCode::kInternal, "deleted");
   EXPECT_TRUE(next_of(*source, TapEvent::Kind::kTopicGone, "/dock/command"));
+}
+
+// hubctl echo starts the tap and then subscribes: a sample written the moment the tap's reader
+// matched (as `hubctl send --wait` does) came in between, and the tap's thread took it for nobody.
+TEST_F(StationTapTest, SamplesThatCameBeforeTheFirstConsumerWaitForIt) {
+  TapOptions options;
+  options.filter = [](std::string_view, const msgs::TypeInfo&) { return false; };
+  options.fixed.emplace_back("/dock/command", command_type_);
+  auto tap = StationTap::start(*tapping_, std::move(options));
+  ASSERT_TRUE(tap) << tap.error().message;
+  auto topic = dds::UntypedTopic::create(*station_, *command_type_->descriptor, "/dock/command");
+  auto writer = dds::UntypedWriter::create(*station_, *topic, dds::Qos::ros2_default(10));
+  ASSERT_TRUE(topic && writer);
+  ASSERT_TRUE(writer->wait_for_readers(1, kStationTapPatience));
+  const dds::UntypedSample sent = command("monitor");
+  for (int n = 0; n < 3; ++n) ASSERT_TRUE(writer->write(sent.data()).is_ok());
+  // Acknowledged: in the tap's reader. Then longer than the tap's thread takes to wake on it.
+  ASSERT_TRUE(writer->wait_for_acks(kStationTapPatience));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  auto source = (*tap)->subscribe(1000);
+  for (std::uint64_t n = 1; n <= 3; ++n) {
+    auto event = next_of(*source, TapEvent::Kind::kSample, "/dock/command");
+    ASSERT_TRUE(event) << "sample " << n << " was taken before anyone subscribed";
+    EXPECT_EQ(event->sample->sequence, n);
+  }
 }
 
 TEST_F(StationTapTest, AConsumerThatDoesNotReadLosesItsOwnSamplesAndHoldsUpNobody) {
