@@ -29,6 +29,16 @@ char state_of(pid_t pid) {
   return close == std::string::npos || close + 2 >= text.size() ? '?' : text[close + 2];
 }
 
+// Whether `holds` becomes true within 2 s, looked at every 10 ms.
+template <class Predicate>
+bool eventually(Predicate holds) {
+  for (int i = 0; i < 200; ++i) {
+    if (holds()) return true;
+    ::usleep(10'000);
+  }
+  return holds();
+}
+
 ChildProcess start_shell(const std::string& script) {
   auto child = ChildProcess::start("/bin/sh", {"-c", script});
   EXPECT_TRUE(child.is_ok());
@@ -44,24 +54,23 @@ TEST(CpuTurns, OneIsStoppedWhileTheOtherIsMeasuredAndBothRunAfter) {
   // The idle one first: its ratio to the busy one is defined (the other way round it divides by 0).
   auto turns = measure_cpu_in_turns(idle_process, busy, options, [&](double seconds) {
     ++calls;
-    // The stop is asynchronous: the state reads 'T' once the signal was delivered.
-    ::usleep(20'000);
-    const bool busy_stopped = state_of(busy.pid()) == 'T';
-    const bool idle_stopped = state_of(idle_process.pid()) == 'T';
-    if (busy_stopped != idle_stopped) ++calls_with_one_stopped;
+    // The stop is asynchronous: the state reads 'T' once the process has taken the signal, which
+    // a process waiting for a core on a loaded machine does only when it runs: up to 2 s.
+    if (eventually([&] { return (state_of(busy.pid()) == 'T') != (state_of(idle_process.pid()) == 'T'); }))
+      ++calls_with_one_stopped;
     ::usleep(static_cast<useconds_t>(seconds * 1e6));
   });
   ASSERT_TRUE(turns.is_ok()) << turns.error().message;
   EXPECT_EQ(calls, 2 * 2 * 2);  // 2 rounds x 2 turns x (settle, measure)
   EXPECT_EQ(calls_with_one_stopped, calls);
-  ::usleep(20'000);
-  EXPECT_NE(state_of(busy.pid()), 'T');
-  EXPECT_NE(state_of(idle_process.pid()), 'T');
+  EXPECT_TRUE(eventually([&] { return state_of(busy.pid()) != 'T'; }));
+  EXPECT_TRUE(eventually([&] { return state_of(idle_process.pid()) != 'T'; }));
   ASSERT_EQ(turns->ratios.size(), 2U);
-  // The busy loop takes a core while the test runs alone, and over a fifth of one even beside the
-  // other tests of a parallel run on 2 cores; the sleeping process takes next to nothing.
+  // The busy loop takes a core while the test runs alone, and a tenth of one even beside the
+  // other tests of the default suite (4 at a time on 2 cores, each with threads of its own); the
+  // sleeping process takes next to nothing.
   for (const double pct : turns->a_pct) EXPECT_LT(pct, 5.0);
-  for (const double pct : turns->b_pct) EXPECT_GT(pct, 20.0);
+  for (const double pct : turns->b_pct) EXPECT_GT(pct, 10.0);
   EXPECT_LT(turns->median, 0.1);
   EXPECT_LE(turns->min, turns->median);
   EXPECT_GE(turns->max, turns->median);
