@@ -87,12 +87,6 @@ function(hubrt_target_defaults target)
   if(HUBRT_UNITY_LIBRARIES AND _type MATCHES "^(STATIC|SHARED|OBJECT|MODULE)_LIBRARY$"
      AND NOT target STREQUAL "hubrt_library_pch")
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON)
-    # The sanitizers' defaults (hubrt_cyclone_tsan_suppressions' interface sources) are the
-    # programs': a static library that links them keeps them as objects of their own, which a
-    # program that defines them already never pulls; merged into a unity source with code the program
-    # needs, they would be linked twice (lld: duplicate symbol __ubsan_default_options).
-    set_source_files_properties(${HUBRT_PROGRAM_ONLY_SOURCES} TARGET_DIRECTORY ${target}
-                                PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
   endif()
   # GCC's -Wsubobject-linkage is for a class defined in a header whose member's type is in an
   # anonymous namespace (each file including it would define a different class). A unity source
@@ -104,8 +98,6 @@ function(hubrt_target_defaults target)
     target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wno-subobject-linkage>)
   endif()
 endfunction()
-get_filename_component(_hubrt_dds_src "${CMAKE_CURRENT_LIST_DIR}/../../firmware/dds/src" ABSOLUTE)
-set(HUBRT_PROGRAM_ONLY_SOURCES ${_hubrt_dds_src}/ubsan_options.cc ${_hubrt_dds_src}/cyclone_tsan_suppressions.cc)
 
 # HUBRT_SHARED_LIBS (top-level CMakeLists.txt): hubrt's own libraries as shared objects in the
 # test builds. Statically linked, every one of ~130 sanitizer test programs carried its own copy of
