@@ -41,8 +41,14 @@ find_program(HUBRT_IDLC_EXECUTABLE idlc NO_CMAKE_FIND_ROOT_PATH REQUIRED
 # cross-compiling, built for the host through ExternalProject with the host compiler
 # (-D<compiler_var>=<compiler>: a separate configure, no toolchain file, no target flags, the host's
 # libraries); else the project's own target <target> from add_subdirectory(<dir>). Sets <out> to
-# its file and <out>_DEPENDS to what uses of it depend on.
+# its file and <out>_DEPENDS to what uses of it depend on. A `prebuilt` that does not exist is
+# not used.
 function(_hubrt_host_tool out target dir file prebuilt compiler_var compiler)
+  if(prebuilt AND NOT EXISTS "${prebuilt}")
+    # A tree configured with another build's tool (toolchain/default-suite) after that build went.
+    message(STATUS "${target}: the prebuilt ${prebuilt} is not there; building one")
+    set(prebuilt "")
+  endif()
   if(prebuilt)
     set(path "${prebuilt}")
     set(depends "${prebuilt}")
