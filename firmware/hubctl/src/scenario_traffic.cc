@@ -138,8 +138,8 @@ Expected<WriterEntry*> ScenarioTraffic::writer_with(const std::string& topic, co
     it = writers_.emplace(topic, std::move(entry)).first;
     if (auto matched = wait_for_readers(*it->second, readers); !matched) return std::move(matched).error();
     // A step writes once: every reader matched should have heard the new writer first. One that
-    // has not within the discovery timeout (a stopped hub, in a test of one) does not hold up
-    // the others; a step that needs that hub's answer finds out by waiting for it.
+    // has not within the discovery timeout (a stopped hub) holds up the others no longer; a step
+    // that needs that hub's answer finds out by waiting for it.
     (void)greet_readers(*it->second->writer, discovery_timeout_, topic, [this] { pump(); });
     return it->second.get();
   }
