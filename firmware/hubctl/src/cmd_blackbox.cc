@@ -56,9 +56,8 @@ int run_blackbox(const BlackBoxOptions& options) {
     return kExitFailed;
   }
   auto reader = dds::Reader<KeyValue>::create(*participant, *reply_topic, dds::Qos::ros2_default(100));
-  dds::Qos request_qos = dds::Qos::ros2_default();
-  request_qos.dispose_on_unregister(false);  // so that greet_readers can announce it
-  auto writer = dds::Writer<KeyValue>::create(*participant, *request_topic, request_qos);
+  auto writer =
+      dds::Writer<KeyValue>::create(*participant, *request_topic, announceable(dds::Qos::ros2_default()));
   if (!reader || !writer) {
     fmt::print(stderr, "hubctl blackbox: {}\n", (!reader ? reader.error() : writer.error()).message);
     return kExitFailed;
@@ -68,14 +67,8 @@ int run_blackbox(const BlackBoxOptions& options) {
   ReaderWait wait;
   wait.wanted = 1;
   wait.timeout = seconds(options.domain.timeout_s);
+  wait.greet = true;  // the request goes once: the hub's reader must have heard this writer
   auto readers = wait_for_readers(writer->untyped(), wait, *request_topic_name);
-  // The request goes once: the hub's reader must have heard this writer, not only be matched.
-  if (readers && !readers->interrupted) {
-    if (auto greeted = greet_readers(writer->untyped(), wait.timeout, *request_topic_name); !greeted)
-      readers = std::move(greeted).error();
-    else
-      readers = *greeted;
-  }
   if (!readers || readers->interrupted) {
     fmt::print(stderr, "hubctl blackbox: {}\n",
                readers ? "interrupted"

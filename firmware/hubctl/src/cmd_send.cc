@@ -105,6 +105,8 @@ int run_send(const SendOptions& options) {
   wait.wanted = options.wait_readers;
   wait.settle = limit != 0;
   wait.timeout = seconds(options.domain.timeout_s);
+  // Matched is not yet heard: a reader that has not heard this writer would drop the sample.
+  wait.greet = limit != 0;
   auto readers = wait_for_readers(*writer, wait, *ros_name);
   if (!readers) {
     // Nobody reads because nobody authenticated us (or we them): say so, and send nothing.
@@ -120,18 +122,6 @@ int run_send(const SendOptions& options) {
   } else if (readers->interrupted) {
     fmt::print(stderr, "hubctl send: interrupted while waiting for readers of {}; nothing sent\n", *ros_name);
     return interrupted_exit_status();
-  } else if (limit != 0) {
-    // Matched is not yet heard: a reader that has not heard this writer would drop the sample.
-    auto greeted = greet_readers(*writer, seconds(options.domain.timeout_s), *ros_name);
-    if (!greeted) {
-      fmt::print(stderr, "hubctl send: {}; nothing sent\n", greeted.error().message);
-      return kExitFailed;
-    }
-    if (greeted->interrupted) {
-      fmt::print(stderr, "hubctl send: interrupted while waiting for readers of {}; nothing sent\n",
-                 *ros_name);
-      return interrupted_exit_status();
-    }
   }
   if (!options.quiet)
     fmt::print("sending {} ({}) at {} Hz:\n{}", *ros_name, info.ros_name, options.rate_hz,

@@ -9,8 +9,10 @@
 
 namespace hubrt::hubctl {
 
-Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
-                                          const std::string& ros_topic) {
+namespace {
+
+Expected<ReadersMatched> await_matches(const dds::UntypedWriter& writer, const ReaderWait& wait,
+                                       const std::string& ros_topic) {
   using Clock = std::chrono::steady_clock;
   constexpr auto kPoll = std::chrono::milliseconds(5);
   const auto start = Clock::now();
@@ -48,6 +50,8 @@ Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, cons
   }
 }
 
+}  // namespace
+
 Expected<ReadersMatched> greet_readers(const dds::UntypedWriter& writer, Duration timeout,
                                        const std::string& ros_topic, const std::function<void()>& between) {
   using Clock = std::chrono::steady_clock;
@@ -73,6 +77,13 @@ Expected<ReadersMatched> greet_readers(const dds::UntypedWriter& writer, Duratio
                       count, ros_topic, to_seconds(timeout)));
     }
   }
+}
+
+Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
+                                          const std::string& ros_topic) {
+  auto matched = await_matches(writer, wait, ros_topic);
+  if (!matched || matched->interrupted || !wait.greet) return matched;
+  return greet_readers(writer, wait.timeout, ros_topic);
 }
 
 std::optional<std::string> late_acknowledgement(Duration ack_delay, std::uint32_t lifespan_ms) {

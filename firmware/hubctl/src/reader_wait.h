@@ -24,6 +24,10 @@ struct ReaderWait {
   // after the last one did is not on its way. Generous for loaded machines, short for people.
   Duration quiet = std::chrono::milliseconds(500);
   Duration timeout = std::chrono::seconds(5);
+  // Then announce the writer to the readers matched and wait, at most `timeout` again, until each
+  // has heard it (greet_readers): for a sample written once. The writer's QoS must be
+  // announceable().
+  bool greet = false;
 };
 
 struct ReadersMatched {
@@ -33,9 +37,9 @@ struct ReadersMatched {
 
 // Polls `writer`'s matched-reader count (every 5 ms) as `wait` asks, until satisfied, stopped by
 // SIGINT/SIGTERM (stop_requested) or `wait.timeout` passes. Settling that runs into the timeout
-// with at least one reader matched counts as done.
+// with at least one reader matched counts as done. With `wait.greet`, greet_readers follows.
 // Errors: kTimeout "only <n> of <wanted> reader(s) of <topic> matched within <t> s" (--wait), or
-// "nobody reads <topic> (waited <t> s)"; Cyclone's code for a deleted writer.
+// "nobody reads <topic> (waited <t> s)"; Cyclone's code for a deleted writer; greet_readers'.
 Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, const ReaderWait& wait,
                                           const std::string& ros_topic);
 
@@ -45,9 +49,15 @@ Expected<ReadersMatched> wait_for_readers(const dds::UntypedWriter& writer, cons
 // So before the first sample of a run that is not repeated, hubctl announces its writer and waits,
 // at most `timeout`, until every reader matched has acknowledged that (polling, so that SIGINT and
 // SIGTERM are heard, and `between` runs between polls: the scenarios keep their readers drained).
-// The writer's QoS must not dispose on unregister (command_writer_qos).
+// The writer's QoS must not dispose on unregister (announceable, command_writer_qos).
 // Errors: kTimeout "<n> reader(s) of <topic> matched, but not every one heard this writer within
 // <t> s"; the announcement's refusal (kFailedPrecondition for a keyed topic or a disposing QoS).
+// `qos` with unregistering that does not dispose, so that a writer of it can be announced.
+inline dds::Qos announceable(dds::Qos qos) {
+  qos.dispose_on_unregister(false);
+  return qos;
+}
+
 Expected<ReadersMatched> greet_readers(const dds::UntypedWriter& writer, Duration timeout,
                                        const std::string& ros_topic,
                                        const std::function<void()>& between = {});

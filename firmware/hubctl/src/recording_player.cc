@@ -41,9 +41,8 @@ Expected<std::unique_ptr<PlayedTopic>> open_topic(const dds::Participant& partic
   auto t = dds::UntypedTopic::create(participant, *topic.type->descriptor, topic.ros_name);
   if (!t) return std::move(t).error();
   played->topic.emplace(std::move(*t));
-  dds::Qos qos = qos_for(topic, command_lifespan_ms);
-  qos.dispose_on_unregister(false);  // so that greet_readers can announce it
-  auto w = dds::UntypedWriter::create(participant, *played->topic, qos);
+  auto w = dds::UntypedWriter::create(participant, *played->topic,
+                                      announceable(qos_for(topic, command_lifespan_ms)));
   if (!w) return std::move(w).error();
   played->writer.emplace(std::move(*w));
   return played;
@@ -102,13 +101,8 @@ int play_recording(const dds::Participant& participant, const RecordingPlayOptio
       ReaderWait wait;
       wait.settle = true;
       wait.timeout = options.discovery_timeout;
+      wait.greet = true;  // matched is not yet heard: a reader that has not would lose the first samples
       auto readers = wait_for_readers(*(*opened)->writer, wait, topic.ros_name);
-      if (readers && !readers->interrupted) {
-        // Matched is not yet heard: the first samples would be lost to a reader that has not.
-        if (auto greeted = greet_readers(*(*opened)->writer, options.discovery_timeout, topic.ros_name);
-            !greeted)
-          readers = std::move(greeted).error();
-      }
       (*source)->shift(std::chrono::steady_clock::now() - wait_from);
       if (!readers)
         fmt::print(stderr, "hubctl play: warning: {}; playing it anyway\n", readers.error().message);

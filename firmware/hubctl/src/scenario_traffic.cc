@@ -130,9 +130,7 @@ Expected<WriterEntry*> ScenarioTraffic::writer_with(const std::string& topic, co
     auto t = dds::UntypedTopic::create(participant_, *type.descriptor, topic);
     if (!t) return std::move(t).error();
     entry->topic.emplace(std::move(*t));
-    dds::Qos announcing = qos;
-    announcing.dispose_on_unregister(false);  // so that greet_readers can announce it
-    auto w = dds::UntypedWriter::create(participant_, *entry->topic, announcing);
+    auto w = dds::UntypedWriter::create(participant_, *entry->topic, announceable(qos));
     if (!w) return std::move(w).error();
     entry->writer.emplace(std::move(*w));
     it = writers_.emplace(topic, std::move(entry)).first;
