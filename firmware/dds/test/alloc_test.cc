@@ -1,7 +1,5 @@
 // Heap allocations on the calling thread for the hot-path calls, ours against raw Cyclone's.
 // Prints the figures it measures.
-#include <signal.h>
-
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -185,10 +183,7 @@ TEST_F(Allocations, WriteToAReaderInAnotherProcess) {
       [] {});
   print("Counter, reader in another process, ours", ours);
   EXPECT_EQ(writer->matched_readers().value_or(0), 1u) << "the remote reader stayed matched throughout";
-  ASSERT_TRUE(probe->signal(SIGTERM));
-  auto status = probe->wait(kDeliveryBound);
-  ASSERT_TRUE(status) << status.error().message;
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << probe->stderr_text();
+  expect_probe_ends_cleanly(*probe);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // A private loopback domain and one participant in it, for every test that moves DDS traffic.
 #pragma once
 
+#include <signal.h>
+
 #include <array>
 #include <chrono>
 #include <optional>
@@ -11,6 +13,7 @@
 #include "hubrt/dds/read_condition.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/waitset.h"
+#include "hubrt/test_support/child_process.h"
 #include "hubrt/test_support/test_domain.h"
 
 namespace hubrt::dds::test {
@@ -49,6 +52,15 @@ class DdsTest : public ::testing::Test {
     std::array<WaitSet::Token, 1> fired{};
     const auto n = waitset->wait(fired, kDeliveryBound);
     return n.is_ok() && n.value() == 1 && fired[0] == 1;
+  }
+
+  // Ends the DDS peer process (tests/support/test/dds_env_probe.cc) and expects it to exit 0, as
+  // it does after SIGTERM unless DDS failed in it.
+  static void expect_probe_ends_cleanly(test_support::ChildProcess& probe) {
+    ASSERT_TRUE(probe.signal(SIGTERM));
+    auto status = probe.wait(kDeliveryBound);
+    ASSERT_TRUE(status) << status.error().message;
+    EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << probe.stderr_text();
   }
 
   std::optional<test_support::TestDomain> domain_;
