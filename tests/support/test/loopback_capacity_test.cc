@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <vector>
 
@@ -58,7 +59,13 @@ class TakenIndices {
       // bind of this port fail.
       address.sin_addr.s_addr = htonl(INADDR_ANY);
       address.sin_port = htons(unicast_discovery_port(domain_id, index));
-      if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) ++bound_;
+      // A port already in use is as taken to Cyclone as one bound here. The test domains' ports
+      // lie in Linux's ephemeral range (32768-60999), where another test's socket can sit: CI once
+      // found one of these 64 ports held so (a fresh clone's .ci/run, TSan tests at -j2).
+      if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0 ||
+          errno == EADDRINUSE) {
+        ++taken_;
+      }
       fds_.push_back(fd);
     }
   }
@@ -67,18 +74,19 @@ class TakenIndices {
   }
   TakenIndices(const TakenIndices&) = delete;
   TakenIndices& operator=(const TakenIndices&) = delete;
-  [[nodiscard]] int bound() const { return bound_; }
+  // Indices whose discovery port is bound here or was in use already.
+  [[nodiscard]] int taken() const { return taken_; }
 
  private:
   std::vector<int> fds_;
-  int bound_ = 0;
+  int taken_ = 0;
 };
 
 TEST(LoopbackCapacity, SixtyFourHubsHubctlAndAPlannerOnOneHostFindEachOther) {
   auto domain = TestDomain::acquire();
   ASSERT_TRUE(domain) << domain.error().message;
   const TakenIndices hubs(domain->domain_id(), kHubs);
-  ASSERT_EQ(hubs.bound(), kHubs) << "the private domain's ports should be free";
+  ASSERT_EQ(hubs.taken(), kHubs) << "every one of the first 64 indices should be taken";
 
   // The 65th participant (hubctl's place): index 64.
   ProbeListener listener;
