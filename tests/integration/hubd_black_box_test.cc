@@ -1,6 +1,7 @@
 // hubd's black box (issue 30 point 3) as the process runs it: a fault latching writes a file whose
 // last RSP State shows the fault; `hubctl blackbox` writes one on request and a second request
-// within 10 s is refused; SIGTERM writes the last minute — the planner's commands with their source
+// within 10 s is refused, while a request asked again gets its answer again and hubctl asks again
+// when no answer comes; SIGTERM writes the last minute — the planner's commands with their source
 // time before their arrival, the States, /diagnostics; a crash (SIGSEGV) writes through the crash
 // path a file the linear reader reads.
 #include <csignal>
@@ -12,12 +13,17 @@
 
 #include "hubrt/dds/cdr_codec.h"
 #include "hubrt/dds/domain.h"
+#include "hubrt/dds/reader.h"
 #include "hubrt/dds/sample.h"
+#include "hubrt/dds/topic.h"
+#include "hubrt/dds/writer.h"
 #include "hubrt/mcap/linear_reader.h"
 #include "hubrt/mcap/summary.h"
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
 #include "hubrt/test_support/hub_process.h"
+
+#include "diagnostic_msgs_typed.h"
 
 namespace hubrt::integration {
 namespace {
@@ -27,6 +33,7 @@ using std::chrono::seconds;
 using test_support::ChildProcess;
 using test_support::HubProcess;
 using test_support::HubProcessOptions;
+using KeyValue = diagnostic_msgs_msg_dds__KeyValue_;
 
 // Start-up and discovery under sanitizers on a loaded 2-core machine; only reached when broken.
 constexpr auto kPatience = seconds(60);
@@ -75,6 +82,61 @@ class HubdBlackBoxTest : public ::testing::Test {
 
   std::optional<test_support::TestDomain> domain_;
   fs::path dir_;
+};
+
+// One end of the black box's request and answer, made by the test: it reads `read_topic` and
+// writes `write_topic` (the hub's ends swapped for a client, as they are for a fake hub).
+class KeyValueEnd {
+ public:
+  static std::unique_ptr<KeyValueEnd> open(const test_support::TestDomain& domain,
+                                           const std::string& read_topic, const std::string& write_topic) {
+    auto participant = dds::Participant::create(domain.config(), "blackbox_test");
+    if (!participant) return nullptr;
+    auto end = std::unique_ptr<KeyValueEnd>(new KeyValueEnd(std::move(*participant)));
+    auto in = dds::Topic<KeyValue>::create(end->participant_, read_topic);
+    auto out = dds::Topic<KeyValue>::create(end->participant_, write_topic);
+    if (!in || !out) return nullptr;
+    auto reader = dds::Reader<KeyValue>::create(end->participant_, *in, dds::Qos::ros2_default(100));
+    auto writer = dds::Writer<KeyValue>::create(end->participant_, *out);
+    if (!reader || !writer) return nullptr;
+    end->topics_.emplace_back(std::move(*in));
+    end->topics_.emplace_back(std::move(*out));
+    end->reader_.emplace(std::move(*reader));
+    end->writer_.emplace(std::move(*writer));
+    return end;
+  }
+
+  // Until the other end's reader and writer are matched with ours.
+  bool matched() const {
+    return reader_->wait_for_writers(1, kPatience) && writer_->wait_for_readers(1, kPatience);
+  }
+  bool write(const std::string& key, const std::string& value) {
+    dds::Sample<KeyValue> sample;
+    sample->key = dds_string_dup(key.c_str());
+    sample->value = dds_string_dup(value.c_str());
+    return writer_->write(*sample).is_ok();
+  }
+  // The next {key, value} that comes within `wait`.
+  std::optional<std::pair<std::string, std::string>> next(Duration wait) {
+    const auto deadline = std::chrono::steady_clock::now() + wait;
+    dds::Sample<KeyValue> sample;
+    while (std::chrono::steady_clock::now() < deadline) {
+      const Result<bool> taken = reader_->take_next(sample);
+      if (taken.is_ok() && taken.value()) {
+        return std::pair<std::string, std::string>(sample->key != nullptr ? sample->key : "",
+                                                   sample->value != nullptr ? sample->value : "");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  explicit KeyValueEnd(dds::Participant participant) : participant_(std::move(participant)) {}
+  dds::Participant participant_;
+  std::vector<dds::Topic<KeyValue>> topics_;
+  std::optional<dds::Reader<KeyValue>> reader_;
+  std::optional<dds::Writer<KeyValue>> writer_;
 };
 
 struct Contents {
@@ -150,6 +212,54 @@ TEST_F(HubdBlackBoxTest, ARequestWritesItAndASecondWithinTenSecondsIsRefused) {
   auto none = nobody.wait(kPatience);
   ASSERT_TRUE(none);
   EXPECT_TRUE(none->exited_with(1)) << nobody.stderr_text();
+}
+
+TEST_F(HubdBlackBoxTest, ARequestAskedAgainGetsItsAnswerAgainNotASecondFile) {
+  HubProcess hub = start_rsp();
+  auto client = KeyValueEnd::open(*domain_, "/rsp_ecu/blackbox/written", "/rsp_ecu/blackbox/request");
+  ASSERT_TRUE(client);
+  ASSERT_TRUE(client->matched()) << hub.output();
+  // As hubctl asks: again every second until an answer comes (the first may be lost on the way).
+  std::vector<std::string> answers;
+  for (int attempt = 0; attempt < 60 && answers.empty(); ++attempt) {
+    ASSERT_TRUE(client->write("same-id", "the test"));
+    while (auto reply = client->next(seconds(1))) answers.push_back(reply->second);
+  }
+  ASSERT_FALSE(answers.empty()) << hub.output();
+  const std::string first = answers.front();
+  EXPECT_TRUE(first.starts_with("written " + dir_.string())) << first;
+  // Asked again well within the 10 s between files: the same answer, not "busy".
+  ASSERT_TRUE(client->write("same-id", "the test"));
+  const std::size_t before = answers.size();
+  while (auto reply = client->next(seconds(3))) answers.push_back(reply->second);
+  ASSERT_GT(answers.size(), before) << "no answer to the request asked again";
+  for (const std::string& answer : answers) EXPECT_EQ(answer, first);
+  // Another request within the 10 s is still refused.
+  ASSERT_TRUE(client->write("another-id", "the test"));
+  auto other = client->next(kPatience);
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->first, "another-id");
+  EXPECT_TRUE(other->second.starts_with("busy")) << other->second;
+  EXPECT_EQ(files_ending("_request.mcap").size(), 1U);
+}
+
+// A fake hub that never answers the first request: hubctl asks again, with the same id, and
+// prints the answer to the second.
+TEST_F(HubdBlackBoxTest, HubctlAsksAgainWhenNoAnswerComes) {
+  auto fake_hub = KeyValueEnd::open(*domain_, "/fake_ecu/blackbox/request", "/fake_ecu/blackbox/written");
+  ASSERT_TRUE(fake_hub);
+  ChildProcess asking = hubctl({"blackbox", "fake_ecu", "--timeout", "60"});
+  auto first = fake_hub->next(kPatience);
+  ASSERT_TRUE(first) << asking.stderr_text();
+  auto second = fake_hub->next(seconds(30));
+  ASSERT_TRUE(second) << "hubctl did not ask again; " << asking.stderr_text();
+  EXPECT_EQ(second->first, first->first) << "asked again with another id";
+  ASSERT_TRUE(fake_hub->write(second->first, "written /fake/black_box.mcap (1 bytes, 0 messages, 0.0 s)"));
+  auto status = asking.wait(kPatience);
+  ASSERT_TRUE(status);
+  EXPECT_TRUE(status->exited_with(0)) << asking.stderr_text();
+  EXPECT_NE(asking.stdout_text().find("written /fake/black_box.mcap"), std::string::npos)
+      << asking.stdout_text();
 }
 
 TEST_F(HubdBlackBoxTest, SigtermWritesTheLastMinuteOfCommandsStatesAndDiagnostics) {

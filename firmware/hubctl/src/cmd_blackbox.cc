@@ -30,6 +30,9 @@ struct BlackBoxOptions {
   std::string ros_namespace;
 };
 
+// How long an unanswered request waits before it is sent again.
+constexpr auto kAskAgainAfter = std::chrono::seconds(2);
+
 std::string random_id() {
   std::random_device device;
   return fmt::format("{:08x}{:08x}", device(), device());
@@ -86,14 +89,22 @@ int run_blackbox(const BlackBoxOptions& options) {
   dds::Sample<KeyValue> request;
   request->key = dds_string_dup(id.c_str());
   request->value = dds_string_dup(fmt::format("hubctl blackbox on {}", host).c_str());
-  if (auto status = writer->write(*request); !status.is_ok()) {
-    fmt::print(stderr, "hubctl blackbox: sending the request failed: {}\n", to_string(status.code()));
-    return kExitFailed;
-  }
   // Writing a minute of a busy hub takes a moment; generous for a loaded Pi.
   const auto deadline = std::chrono::steady_clock::now() + seconds(std::max(options.domain.timeout_s, 30.0));
+  // The hub answers once, from its long-lived writer: an answer written before that writer has
+  // matched our reader, or before our reader has heard it, is lost (docs/interop.md, "A sample
+  // written once"). So the request goes again, with the same id, until an answer comes: the hub
+  // answers a repeated id with the answer it gave (one file, never "busy" for our own request).
+  auto next_send = std::chrono::steady_clock::now();
   dds::Sample<KeyValue> reply;
   while (!stop_requested() && std::chrono::steady_clock::now() < deadline) {
+    if (std::chrono::steady_clock::now() >= next_send) {
+      if (auto status = writer->write(*request); !status.is_ok()) {
+        fmt::print(stderr, "hubctl blackbox: sending the request failed: {}\n", to_string(status.code()));
+        return kExitFailed;
+      }
+      next_send = std::chrono::steady_clock::now() + kAskAgainAfter;
+    }
     const Result<bool> taken = reader->take_next(reply);
     if (!taken.is_ok() || !taken.value()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -6,12 +6,14 @@
 // not}. (hubd writes it on exit itself, and crash_dump() on a crash.)
 //
 // Bounded, whoever asks: at most one file per kMinDumpInterval for requests and one for faults
-// (asking again meanwhile gets "busy" and the last file's name), at most kRequestsPerRound requests
-// answered per kRequestRound, the rest of a flood dropped by the reader's history; the directory's
-// cap bounds the disk. Nothing here runs on the cycle thread but fault_latched(), which only sets
-// a flag.
+// (asking again meanwhile gets "busy" and the last file's name, but a request repeated with its id,
+// as hubctl repeats one whose answer it has not seen, gets the answer it had), at most
+// kRequestsPerRound requests answered per kRequestRound, the rest of a flood dropped by the
+// reader's history; the directory's cap bounds the disk. Nothing here runs on the cycle thread but
+// fault_latched(), which only sets a flag.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -83,6 +85,13 @@ class BlackBoxService {
   runtime::Lifecycle last_state_ = runtime::Lifecycle::kConfiguring;        // cycle thread only
   std::optional<std::chrono::steady_clock::time_point> last_request_dump_;  // the service's thread only
   std::string last_request_path_;
+  // The last answers given, by request id (the service's thread only): a bounded memory.
+  struct GivenAnswer {
+    std::string id;
+    std::string answer;
+  };
+  std::array<GivenAnswer, kRequestsPerRound> given_{};
+  std::size_t next_given_ = 0;
   std::thread thread_;
 };
 
