@@ -21,9 +21,10 @@ beside a bare writer) and hubrt_bench_echo_latency (command -> echo, beside the 
 that stopped (a failed step) are counted: a station that failed its use-case. With --conformance, in
 the domains design, last: `hubctl conformance` of every hub of every station, the plant running.
 With --tails, after the window: hubrt_bench_tails (docs/tails.md: ten interleaved rounds, medians
-of the rounds' p95 and p99 ratios) as one more station beside the plant.
+of the rounds' p95 and p99 ratios) as one more station beside the plant. With --realtime, every hubd
+runs as the board packages' units run it, `hubd --realtime`; the planners, hubsim and the probes do not.
     bench/plant.py [--build-dir build/host-release] [--stations 1,4,16,32] [--designs domains,shared]
-                   [--window 20] [--out FILE] [--no-probes] [--append] [--conformance] [--tails]
+                   [--window 20] [--out FILE] [--no-probes] [--append] [--conformance] [--tails] [--realtime]
 Prints one progress line per step and a Markdown table at the end; the JSON goes to --out
 (default BUILD/bench-results/plant.json).
 """
@@ -55,6 +56,7 @@ CONFORMANCE_TIMEOUT_S = 300  # one station's five hubs in parallel, on a host th
 # keeps the host 80 % busy. Past ROUND_WAIT_S a planner is stopped where it is ("mid-round").
 ROUND_WAIT_S = 240
 PLANNER_LOOKAHEAD = 3  # about 13 s of suites each (docs/plant.md): 40 s of a round overlapped
+HUBD_ARGS = []  # more arguments for every hubd: ["--realtime"] with --realtime
 
 
 def progress(line):
@@ -107,7 +109,7 @@ class Station:
         ns = ["--namespace", self.namespace] if self.namespace else []
         for name, board, source in HUBS:
             self._start(name, [f"{build}/firmware/hubd/hubd", "--board", board, "--log-level", "warn",
-                               "--hub", hub_file(source, self.namespace, self.folder, name)])
+                               "--hub", hub_file(source, self.namespace, self.folder, name)] + HUBD_ARGS)
         self._start("hubsim", [f"{build}/firmware/sim/station/hubsim", "--log-level", "warn", "--station",
                                os.path.join(REPO, "hubs/station/full-station.yaml")] + ns)
         play = [f"{build}/firmware/hubctl/hubctl", "play", os.path.join(REPO, "hubs/station/scenarios/full-use-case.yaml"),
@@ -290,7 +292,8 @@ def conform(build, stations):
 
 def run_plant(build, n, design, window, probes, conformance, tails=False):
     xml = cyclone_xml(n * PROCESSES_PER_STATION + 8 if design == "shared" else 0)
-    result = {"stations": n, "design": design, "processes": n * PROCESSES_PER_STATION}
+    result = {"stations": n, "design": design, "processes": n * PROCESSES_PER_STATION,
+              "hubd_args": " ".join(HUBD_ARGS)}
     with tempfile.TemporaryDirectory(prefix="hubrt-plant-") as scratch:
         stations = []
         try:
@@ -386,7 +389,8 @@ def table(results):
         if hb and (hb["hub_p99_ms"] == 0 or hb["raw_p99_ms"] == 0):
             hb, hb_missing = None, "no periods: the States did not arrive"  # a saturated host
         rows.append(
-            f"| {r['design']} | {r['stations']} | {r['processes']} | {fmt(r.get('discovery_last_s'))} s | "
+            f"| {r['design']}{' (hubd ' + r['hubd_args'] + ')' if r.get('hubd_args') else ''} | {r['stations']} | "
+            f"{r['processes']} | {fmt(r.get('discovery_last_s'))} s | "
             f"{fmt(r['dock_last']['cpu_pct'])} / {fmt(r['dock_median']['cpu_pct'])} % | "
             f"{fmt(r['dock_last']['rss_mb'], '.1f')} / {fmt(r['dock_median']['rss_mb'], '.1f')} MB | "
             f"{fmt(r['host']['busy_pct'], '.0f')} %, {fmt(r['host']['loadavg_1m'], '.1f')} | "
@@ -412,10 +416,14 @@ def main():
                         help="after the window: hubrt_bench_tails as one more station beside the plant (docs/tails.md)")
     parser.add_argument("--conformance", action="store_true",
                         help="after each domains-design plant's window: hubctl conformance of every hub of every station")
+    parser.add_argument("--realtime", action="store_true",
+                        help="every hubd with --realtime, as the board packages' units run it (docs/deploy.md): "
+                             "SCHED_FIFO 40, memory locked; needs root or CAP_SYS_NICE and CAP_IPC_LOCK")
     parser.add_argument("--append", action="store_true",
                         help="keep the results already in --out and run only the N and designs not there yet")
     args = parser.parse_args()
     build = os.path.abspath(args.build_dir)
+    HUBD_ARGS.extend(["--realtime"] if args.realtime else [])
     # Only the programs this run starts: --no-probes needs no bench program, and any build with
     # hubd, hubctl and hubsim runs the plant (a sanitizer build for a check of the bench itself).
     tools = ["firmware/hubd/hubd", "firmware/hubctl/hubctl", "firmware/sim/station/hubsim"]
