@@ -22,6 +22,7 @@
 #include "hubrt/msgs/all_types.h"
 #include "hubrt/msgs/json.h"
 #include "hubrt/test_support/hub_process.h"
+#include "hubrt/test_support/hub_under_test.h"
 
 #include "diagnostic_msgs_typed.h"
 
@@ -92,51 +93,45 @@ class KeyValueEnd {
                                            const std::string& read_topic, const std::string& write_topic) {
     auto participant = dds::Participant::create(domain.config(), "blackbox_test");
     if (!participant) return nullptr;
-    auto end = std::unique_ptr<KeyValueEnd>(new KeyValueEnd(std::move(*participant)));
-    auto in = dds::Topic<KeyValue>::create(end->participant_, read_topic);
-    auto out = dds::Topic<KeyValue>::create(end->participant_, write_topic);
+    auto in = dds::Topic<KeyValue>::create(*participant, read_topic);
+    auto out = dds::Topic<KeyValue>::create(*participant, write_topic);
     if (!in || !out) return nullptr;
-    auto reader = dds::Reader<KeyValue>::create(end->participant_, *in, dds::Qos::ros2_default(100));
-    auto writer = dds::Writer<KeyValue>::create(end->participant_, *out);
+    auto reader = dds::Reader<KeyValue>::create(*participant, *in, dds::Qos::ros2_default(100));
+    auto writer = dds::Writer<KeyValue>::create(*participant, *out);
     if (!reader || !writer) return nullptr;
-    end->topics_.emplace_back(std::move(*in));
-    end->topics_.emplace_back(std::move(*out));
-    end->reader_.emplace(std::move(*reader));
-    end->writer_.emplace(std::move(*writer));
-    return end;
+    return std::unique_ptr<KeyValueEnd>(new KeyValueEnd(
+        std::move(*participant), std::move(*in), std::move(*reader), std::move(*out), std::move(*writer)));
   }
 
   // Until the other end's reader and writer are matched with ours.
-  bool matched() const {
-    return reader_->wait_for_writers(1, kPatience) && writer_->wait_for_readers(1, kPatience);
+  bool matched() {
+    return in_.reader().wait_for_writers(1, kPatience) && writer_.wait_for_readers(1, kPatience);
   }
   bool write(const std::string& key, const std::string& value) {
     dds::Sample<KeyValue> sample;
     sample->key = dds_string_dup(key.c_str());
     sample->value = dds_string_dup(value.c_str());
-    return writer_->write(*sample).is_ok();
+    return writer_.write(*sample).is_ok();
   }
   // The next {key, value} that comes within `wait`.
   std::optional<std::pair<std::string, std::string>> next(Duration wait) {
-    const auto deadline = std::chrono::steady_clock::now() + wait;
-    dds::Sample<KeyValue> sample;
-    while (std::chrono::steady_clock::now() < deadline) {
-      const Result<bool> taken = reader_->take_next(sample);
-      if (taken.is_ok() && taken.value()) {
-        return std::pair<std::string, std::string>(sample->key != nullptr ? sample->key : "",
-                                                   sample->value != nullptr ? sample->value : "");
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return std::nullopt;
+    if (!in_.take_any(wait)) return std::nullopt;
+    const KeyValue& got = in_.latest();
+    return std::pair<std::string, std::string>(got.key != nullptr ? got.key : "",
+                                               got.value != nullptr ? got.value : "");
   }
 
  private:
-  explicit KeyValueEnd(dds::Participant participant) : participant_(std::move(participant)) {}
-  dds::Participant participant_;
-  std::vector<dds::Topic<KeyValue>> topics_;
-  std::optional<dds::Reader<KeyValue>> reader_;
-  std::optional<dds::Writer<KeyValue>> writer_;
+  KeyValueEnd(dds::Participant participant, dds::Topic<KeyValue> in_topic, dds::Reader<KeyValue> reader,
+              dds::Topic<KeyValue> out_topic, dds::Writer<KeyValue> writer)
+      : participant_(std::move(participant)),
+        in_(std::move(in_topic), std::move(reader)),
+        out_topic_(std::move(out_topic)),
+        writer_(std::move(writer)) {}
+  dds::Participant participant_;  // first made, last gone
+  test_support::StateStream<KeyValue> in_;
+  dds::Topic<KeyValue> out_topic_;
+  dds::Writer<KeyValue> writer_;
 };
 
 struct Contents {
