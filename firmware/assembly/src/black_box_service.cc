@@ -133,8 +133,10 @@ bool BlackBoxService::serve_requests() {
     const std::string id = request_id(*endpoints_->request);
     std::string answer;
     const auto now = SteadyClock::now();
-    const auto given = std::find_if(given_.begin(), given_.end(),
-                                    [&](const GivenAnswer& g) { return !id.empty() && g.id == id; });
+    // An empty id is nobody's: never matched, never kept.
+    const auto given = id.empty() ? given_.end()
+                                  : std::find_if(given_.begin(), given_.end(),
+                                                 [&](const GivenAnswer& g) { return g.id == id; });
     if (given != given_.end()) {
       answer = given->answer;  // asked again: its answer may have been lost on the way
     } else if (last_dump && now - *last_dump < kMinDumpInterval) {
