@@ -18,6 +18,8 @@
 #include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
 
+#include "failed_checks.h"
+
 namespace hubrt::conformance_test {
 namespace {
 
@@ -71,11 +73,12 @@ TEST(ManyHubsConformance, ThirtyTwoHubsOnOneHostAllConform) {
   }
   const auto report = nlohmann::json::parse(child->stdout_text(), nullptr, false);
   ASSERT_FALSE(report.is_discarded()) << child->stdout_text() << child->stderr_text();
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << child->stderr_text();
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n"
+                                      << child->stderr_text() << failed_checks(report);
   ASSERT_EQ(report["targets"].size(), static_cast<std::size_t>(kHubs)) << report.dump(2);
   std::set<std::string> passed;
   for (const auto& target : report["targets"]) {
-    EXPECT_EQ(target["passed"], true) << target.dump(2);
+    EXPECT_EQ(target["passed"], true) << target.dump(2) << failed_checks(target);
     if (target["passed"] == true) passed.insert(target["state_topic"].dump());
   }
   EXPECT_EQ(passed.size(), static_cast<std::size_t>(kHubs));

@@ -15,6 +15,8 @@
 #include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
 
+#include "failed_checks.h"
+
 namespace hubrt::conformance_test {
 namespace {
 
@@ -65,12 +67,13 @@ TEST(ParallelConformance, TwoHubsAtOnceBothConform) {
   ASSERT_TRUE(status) << status.error().message;
   const auto report = nlohmann::json::parse(child->stdout_text(), nullptr, false);
   ASSERT_FALSE(report.is_discarded()) << child->stdout_text() << child->stderr_text();
-  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n" << report.dump(2) << child->stderr_text();
+  EXPECT_TRUE(status->exited_with(0)) << status->describe() << "\n"
+                                      << report.dump(2) << child->stderr_text() << failed_checks(report);
   ASSERT_EQ(report["targets"].size(), 2u) << report.dump(2);
   std::set<std::string> layouts;
   for (const auto& target : report["targets"]) {
     layouts.insert(target["layout"].get<std::string>());
-    EXPECT_EQ(target["passed"], true) << target.dump(2);
+    EXPECT_EQ(target["passed"], true) << target.dump(2) << failed_checks(target);
     EXPECT_GE(target["checks"].size(), 20u) << "every phase ran: " << target.dump(2);
   }
   EXPECT_EQ(layouts, (std::set<std::string>{"hub", "node_type"}));

@@ -16,6 +16,8 @@
 #include "hubrt/test_support/hub_process.h"
 #include "hubrt/test_support/test_domain.h"
 
+#include "failed_checks.h"
+
 namespace hubrt::conformance_test {
 namespace {
 
@@ -154,26 +156,12 @@ class StationConformance : public ::testing::TestWithParam<StationHub> {
   std::vector<test_support::HubProcess> hubs_;
 };
 
-std::string failures(const nlohmann::json& report) {
-  std::string out;
-  for (const auto& target : report["targets"]) {
-    for (const auto& check : target["checks"]) {
-      if (check["verdict"] == "FAIL") {
-        out += fmt::format("{} {}: {} (threshold {}) {}\n", target["state_topic"].get<std::string>(),
-                           check["check"].get<std::string>(), check["text"].get<std::string>(),
-                           check["threshold"].get<std::string>(), check["detail"].get<std::string>());
-      }
-    }
-  }
-  return out;
-}
-
 TEST_P(StationConformance, PassesTheHeartbeatConformanceSuite) {
   const StationHub& hub = GetParam();
   const SuiteRun run = run_suite({"--hub", hub.hub});
   ASSERT_FALSE(run.report.is_discarded()) << "no JSON report:\n" << run.stdout_text << run.stderr_text;
   EXPECT_TRUE(run.status.exited_with(0)) << run.status.describe() << "\n"
-                                         << failures(run.report) << run.stderr_text << hub_output();
+                                         << failed_checks(run.report) << run.stderr_text << hub_output();
   EXPECT_EQ(run.report["passed"], true);
   ASSERT_EQ(run.report["targets"].size(), static_cast<std::size_t>(hub.state_topics)) << run.stdout_text;
   for (const auto& target : run.report["targets"]) {

@@ -97,8 +97,8 @@ CheckResult check_fresh_before(std::span<const Observation> uncommanded);
 // planner keeps repeating (`commanded` starts at the first State echoing the command).
 CheckResult check_fresh_while_commanded(std::span<const Observation> commanded);
 
-// t_plus_grows: while one command repeats, t_plus follows the receiver's clock from the State
-// that first echoed it (`held[0]`), within the tolerance, and starts near zero.
+// t_plus_grows: while one command repeats, t_plus follows the hub's stamps from the State that
+// first echoed it (`held[0]`), within the tolerance, and starts near zero.
 CheckResult check_t_plus_grows(std::span<const Observation> held, const Thresholds& thresholds);
 
 // t_plus_restarts: the first State echoing a changed command (`first`) has t_plus near zero and
