@@ -23,8 +23,13 @@ the domains design, last: `hubctl conformance` of every hub of every station, th
 With --tails, after the window: hubrt_bench_tails (docs/tails.md: ten interleaved rounds, medians
 of the rounds' p95 and p99 ratios) as one more station beside the plant. With --realtime, every hubd
 runs as the board packages' units run it, `hubd --realtime`; the planners, hubsim and the probes do not.
+With --probes-realtime [PRIORITY], every probe (its hubd and its baselines, planners and subscribers
+alike) runs under SCHED_FIFO 40, the hubs' own priority, or PRIORITY: on a real plant a station's hubs
+and the PC that watches them are not queued behind the other stations' processes, which on one host
+only a priority gives (above 40, not behind the other stations' hubs either: cores of its own).
     bench/plant.py [--build-dir build/host-release] [--stations 1,4,16,32] [--designs domains,shared]
                    [--window 20] [--out FILE] [--no-probes] [--append] [--conformance] [--tails] [--realtime]
+                   [--probes-realtime [PRIORITY]]
 Prints one progress line per step and a Markdown table at the end; the JSON goes to --out
 (default BUILD/bench-results/plant.json).
 """
@@ -57,6 +62,7 @@ CONFORMANCE_TIMEOUT_S = 300  # one station's five hubs in parallel, on a host th
 ROUND_WAIT_S = 240
 PLANNER_LOOKAHEAD = 3  # about 13 s of suites each (docs/plant.md): 40 s of a round overlapped
 HUBD_ARGS = []  # more arguments for every hubd: ["--realtime"] with --realtime
+PROBE_PREFIX = []  # what a probe runs under: chrt SCHED_FIFO 40 with --probes-realtime (inherited by its children)
 
 
 def progress(line):
@@ -224,7 +230,7 @@ def probe(build, program, args, design, domain, xml, scratch, timeout_s=None):
         env.update(HUBRT_BENCH_DOMAIN=str(domain), HUBRT_BENCH_CYCLONEDDS_URI=xml)
     out = os.path.join(scratch, f"{program}.json")
     # A session of its own: stopped at the timeout with the hubd and raw peer it started.
-    bench = subprocess.Popen([f"{build}/bench/{program}", "--out", out] + args, env=env,
+    bench = subprocess.Popen(PROBE_PREFIX + [f"{build}/bench/{program}", "--out", out] + args, env=env,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         status = bench.wait(timeout=timeout_s)
@@ -293,7 +299,7 @@ def conform(build, stations):
 def run_plant(build, n, design, window, probes, conformance, tails=False):
     xml = cyclone_xml(n * PROCESSES_PER_STATION + 8 if design == "shared" else 0)
     result = {"stations": n, "design": design, "processes": n * PROCESSES_PER_STATION,
-              "hubd_args": " ".join(HUBD_ARGS)}
+              "hubd_args": " ".join(HUBD_ARGS), "probes_under": " ".join(PROBE_PREFIX)}
     with tempfile.TemporaryDirectory(prefix="hubrt-plant-") as scratch:
         stations = []
         try:
@@ -389,7 +395,8 @@ def table(results):
         if hb and (hb["hub_p99_ms"] == 0 or hb["raw_p99_ms"] == 0):
             hb, hb_missing = None, "no periods: the States did not arrive"  # a saturated host
         rows.append(
-            f"| {r['design']}{' (hubd ' + r['hubd_args'] + ')' if r.get('hubd_args') else ''} | {r['stations']} | "
+            f"| {r['design']}{' (hubd ' + r['hubd_args'] + ')' if r.get('hubd_args') else ''}"
+            f"{' (probes under ' + r['probes_under'] + ')' if r.get('probes_under') else ''} | {r['stations']} | "
             f"{r['processes']} | {fmt(r.get('discovery_last_s'))} s | "
             f"{fmt(r['dock_last']['cpu_pct'])} / {fmt(r['dock_median']['cpu_pct'])} % | "
             f"{fmt(r['dock_last']['rss_mb'], '.1f')} / {fmt(r['dock_median']['rss_mb'], '.1f')} MB | "
@@ -419,11 +426,21 @@ def main():
     parser.add_argument("--realtime", action="store_true",
                         help="every hubd with --realtime, as the board packages' units run it (docs/deploy.md): "
                              "SCHED_FIFO 40, memory locked; needs root or CAP_SYS_NICE and CAP_IPC_LOCK")
+    parser.add_argument("--probes-realtime", type=int, nargs="?", const=40, metavar="PRIORITY",
+                        help="every probe and its children under SCHED_FIFO (chrt), by default at 40, the hubs' own "
+                             "priority; above it (41) as if the probe's station had cores of its own; needs root or "
+                             "CAP_SYS_NICE")
     parser.add_argument("--append", action="store_true",
                         help="keep the results already in --out and run only the N and designs not there yet")
     args = parser.parse_args()
     build = os.path.abspath(args.build_dir)
     HUBD_ARGS.extend(["--realtime"] if args.realtime else [])
+    if args.probes_realtime is not None and not 1 <= args.probes_realtime <= 99:
+        parser.error(f"--probes-realtime: {args.probes_realtime} is not a SCHED_FIFO priority (1-99)")
+    PROBE_PREFIX.extend(["chrt", "--fifo", str(args.probes_realtime)] if args.probes_realtime else [])
+    if PROBE_PREFIX and subprocess.run(PROBE_PREFIX + ["true"], capture_output=True).returncode != 0:
+        parser.error(f"--probes-realtime: {' '.join(PROBE_PREFIX)} is refused here (needs root or CAP_SYS_NICE, "
+                     "and a priority of 1-99)")
     # Only the programs this run starts: --no-probes needs no bench program, and any build with
     # hubd, hubctl and hubsim runs the plant (a sanitizer build for a check of the bench itself).
     tools = ["firmware/hubd/hubd", "firmware/hubctl/hubctl", "firmware/sim/station/hubsim"]
