@@ -2,8 +2,11 @@
 """The tails of a hub as the plant grows (issue 33, docs/plant.md): from the results of
 `bench/plant.py --tails`, each figure's p99 in milliseconds (the median over hubrt_bench_tails'
 rounds, the hub's and its baseline's) for every plant size, and each size against the smallest.
-Rows of one design and one way of running hubs and probes are compared with each other only.
-    bench/report_plant_tails.py [--json build/host-release/bench-results/plant.json] [--aim 1.05]
+Rows of one design and one way of running hubs and probes are compared with each other only. Given
+several result files (repeated runs), the rows of one group and N are pooled: their rounds together,
+the median over all of them (ten rounds per run).
+    bench/report_plant_tails.py [--json FILE [FILE ...]] [--aim 1.05]
+(default FILE: build/host-release/bench-results/plant.json)
 Prints a Markdown table; exit status 0 whether or not the aim is met (it is a report, not a gate)."""
 import argparse
 import json
@@ -37,6 +40,19 @@ def group_name(r):
     return ", ".join(parts)
 
 
+def pooled(rows):
+    """One row per N: the rounds of every run of that N together."""
+    by_n = {}
+    for r in rows:
+        if r["stations"] in by_n:
+            first = by_n[r["stations"]]
+            by_n[r["stations"]] = dict(first, tails_per_round=first["tails_per_round"] + r["tails_per_round"],
+                                       runs=first.get("runs", 1) + 1)
+        else:
+            by_n[r["stations"]] = r
+    return list(by_n.values())
+
+
 def report(results, aim):
     groups = {}
     for r in results:
@@ -44,11 +60,14 @@ def report(results, aim):
             groups.setdefault(group_name(r), []).append(r)
     if not groups:
         return None
+    groups = {name: pooled(rows) for name, rows in groups.items()}
     lines = []
     for name, rows in groups.items():
         rows.sort(key=lambda r: r["stations"])
         smallest = rows[0]
-        lines.append(f"**{name}**: p99 in ms, the median of the rounds; hub / baseline; "
+        rounds = ", ".join(f"N = {r['stations']}: {len(r['tails_per_round'])} rounds"
+                           + (f" of {r['runs']} runs" if r.get("runs", 1) > 1 else "") for r in rows)
+        lines.append(f"**{name}**: p99 in ms, the median of the rounds ({rounds}); hub / baseline; "
                      f"each N against N = {smallest['stations']}, aim <= {aim:.2f}x for the hub\n")
         columns = ["figure"] + [f"N = {r['stations']}" for r in rows]
         columns += [f"N = {r['stations']} / N = {smallest['stations']}, hub / baseline" for r in rows[1:]]
@@ -84,17 +103,20 @@ def report(results, aim):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--json", default=os.path.join(REPO, "build", "host-release", "bench-results", "plant.json"))
+    parser.add_argument("--json", nargs="+",
+                        default=[os.path.join(REPO, "build", "host-release", "bench-results", "plant.json")])
     parser.add_argument("--aim", type=float, default=1.05, help="N against the smallest N, for the hub's p99")
     args = parser.parse_args()
-    try:
-        with open(args.json) as f:
-            results = json.load(f)["results"]
-    except (OSError, ValueError, KeyError) as e:
-        sys.exit(f"report_plant_tails.py: {args.json}: {e}")
+    results = []
+    for path in args.json:
+        try:
+            with open(path) as f:
+                results += json.load(f)["results"]
+        except (OSError, ValueError, KeyError) as e:
+            sys.exit(f"report_plant_tails.py: {path}: {e}")
     text = report(results, args.aim)
     if text is None:
-        sys.exit(f"report_plant_tails.py: {args.json} has no row with tails (bench/plant.py --tails)")
+        sys.exit(f"report_plant_tails.py: {' '.join(args.json)}: no row with tails (bench/plant.py --tails)")
     print(text)
 
 

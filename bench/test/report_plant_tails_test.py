@@ -50,6 +50,16 @@ class ReportPlantTails(unittest.TestCase):
             table = [line for line in report_plant_tails.report(rows, 1.05).splitlines() if line.startswith("|")]
             self.assertEqual({line.count("|") for line in table}, {table[0].count("|")}, "\n".join(table))
 
+    def test_repeated_runs_are_pooled_round_by_round(self):
+        # Run 1 alone: 0.4 at N = 1 against 0.5 at N = 32 (1.25x). Pooled with run 2, the medians
+        # of six rounds: N = 1 [0.4, 0.4, 0.4, 0.6, 0.6, 0.6] -> 0.5; N = 32 [0.5 x3, 0.45 x3] -> 0.475.
+        rows = [plant_row(1, [0.4] * 3, [0.4] * 3), plant_row(32, [0.5] * 3, [0.4] * 3),
+                plant_row(1, [0.6] * 3, [0.4] * 3), plant_row(32, [0.45] * 3, [0.4] * 3)]
+        text = report_plant_tails.report(rows, 1.05)
+        self.assertIn("N = 1: 6 rounds of 2 runs, N = 32: 6 rounds of 2 runs", text)
+        row = next(line for line in text.splitlines() if line.startswith("| echo, sparse, own planner"))
+        self.assertIn("| 0.500 / 0.400 (raw pong) | 0.475 / 0.400 (raw pong) | 0.95x / 1.00x (met) |", row)
+
     def test_rows_without_tails_give_no_report(self):
         self.assertIsNone(report_plant_tails.report([{"stations": 1, "design": "domains"}], 1.05))
 
