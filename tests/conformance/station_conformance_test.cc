@@ -3,10 +3,12 @@
 // each one from the wire, as an engineer would against a real cell.
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <set>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -59,26 +61,27 @@ std::string hub_layout_file(const std::string& hub, const std::filesystem::path&
 }
 
 // What a full run must have checked on every State topic, so that a phase silently skipped fails.
-const std::set<std::string> kExpectedChecks = {"first_state",
-                                               "rate_error",
-                                               "jitter_p50",
-                                               "jitter_p99",
-                                               "jitter_max",
-                                               "fresh_before",
-                                               "fresh_while_commanded",
-                                               "t_plus_grows",
-                                               "t_plus_restarts",
-                                               "repeats_silent",
-                                               "echo_all",
-                                               "echo_p50",
-                                               "echo_p99",
-                                               "watchdog",
-                                               "watchdog_error",
-                                               "safe_state",
-                                               "no_stale_reapply",
-                                               "same_command_restarts",
-                                               "got_reset",
-                                               "seq_gaps"};
+// Constant-initialized (a std::set here would be built before main and could throw there).
+constexpr auto kExpectedChecks = std::to_array<std::string_view>({"first_state",
+                                                                  "rate_error",
+                                                                  "jitter_p50",
+                                                                  "jitter_p99",
+                                                                  "jitter_max",
+                                                                  "fresh_before",
+                                                                  "fresh_while_commanded",
+                                                                  "t_plus_grows",
+                                                                  "t_plus_restarts",
+                                                                  "repeats_silent",
+                                                                  "echo_all",
+                                                                  "echo_p50",
+                                                                  "echo_p99",
+                                                                  "watchdog",
+                                                                  "watchdog_error",
+                                                                  "safe_state",
+                                                                  "no_stale_reapply",
+                                                                  "same_command_restarts",
+                                                                  "got_reset",
+                                                                  "seq_gaps"});
 
 // Generous: hubctl's own run takes ~10 s per State topic; a sanitizer build on a loaded machine
 // may take several times that.
@@ -169,9 +172,9 @@ TEST_P(StationConformance, PassesTheHeartbeatConformanceSuite) {
     // Learned from the wire (/diagnostics), not given on the command line.
     EXPECT_EQ(target["rate_source"], "/diagnostics");
     EXPECT_EQ(target["command_timeout_source"], "/diagnostics");
-    std::set<std::string> ran;
+    std::set<std::string, std::less<>> ran;
     for (const auto& check : target["checks"]) ran.insert(check["check"].get<std::string>());
-    for (const std::string& expected : kExpectedChecks) {
+    for (const std::string_view expected : kExpectedChecks) {
       EXPECT_TRUE(ran.contains(expected)) << target["state_topic"] << " did not check " << expected;
     }
   }

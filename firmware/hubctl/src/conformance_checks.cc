@@ -288,6 +288,8 @@ std::vector<CheckResult> check_watchdog(std::span<const WatchdogRound> rounds, d
   const double lower = timeout_s - 1e-3;  // same clock on our side; 1 ms for rounding
   const double upper = timeout_s + period_s + thresholds.watchdog_slack_ms / 1e3;
   double worst = 0;
+  double worst_arrival = 0;
+  std::size_t on_stamps = 0;
   std::string problem;
   for (std::size_t i = 0; i < rounds.size() && problem.empty(); ++i) {
     const WatchdogRound& round = rounds[i];
@@ -295,21 +297,34 @@ std::vector<CheckResult> check_watchdog(std::span<const WatchdogRound> rounds, d
       problem = fmt::format("round {}: fresh_msg never turned false after the commands stopped", i + 1);
       break;
     }
-    const double delay = round.tripped->arrival_s - round.last_command_s;
-    worst = std::max(worst, delay);
-    if (delay < lower) {
+    const double arrived = round.tripped->arrival_s - round.last_command_s;
+    worst_arrival = std::max(worst_arrival, arrived);
+    if (arrived < lower) {
       problem = fmt::format("round {}: tripped {} after the last command, before the {} timeout", i + 1,
-                            ms(delay), ms(timeout_s));
+                            ms(arrived), ms(timeout_s));
+      break;
     }
+    // The stamp counts only between the timeout and the arrival (1 ms for reading two clocks):
+    // outside that the two wall clocks disagree (another host, or `clock_tolerance_ms: none`).
+    double delay = arrived;
+    if (round.last_command_wall_s) {
+      const double stamped = round.tripped->stamp_s - *round.last_command_wall_s;
+      if (stamped >= lower && stamped <= arrived + 1e-3) {
+        delay = stamped;
+        ++on_stamps;
+      }
+    }
+    worst = std::max(worst, delay);
   }
   if (!problem.empty()) {
     out.push_back(failed("watchdog", title, problem));
   } else {
     CheckResult r = at_most("watchdog", title, worst * 1e3, upper * 1e3, "ms", 1);
     r.detail = fmt::format(
-        "last command -> first State with fresh_msg = false, worst of {} rounds; "
-        "timeout {}, period {}, slack {:g} ms; never earlier than the timeout",
-        rounds.size(), ms(timeout_s), ms(period_s), thresholds.watchdog_slack_ms);
+        "last command -> first State with fresh_msg = false, worst of {} rounds ({} on the hub's stamps; "
+        "{} on the arrivals); timeout {}, period {}, slack {:g} ms; never earlier than the timeout",
+        rounds.size(), on_stamps, ms(worst_arrival), ms(timeout_s), ms(period_s),
+        thresholds.watchdog_slack_ms);
     out.push_back(std::move(r));
   }
   const std::string error_title = "timeout reported in error_list";

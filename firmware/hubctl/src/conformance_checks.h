@@ -119,12 +119,17 @@ std::vector<CheckResult> check_echo_latency(const std::vector<double>& latencies
 // --- watchdog and what follows ------------------------------------------------------------------
 
 struct WatchdogRound {
-  double last_command_s = 0;           // when the last command was written
+  double last_command_s = 0;           // when the last command was written (steady clock)
   std::optional<Observation> tripped;  // first State with fresh_msg = false after that
+  // The same write on the wall clock, what its DDS source timestamp says. The hub counts its
+  // timeout from there (README, "Commands age"), so the trip's stamp minus this is the hub's delay.
+  std::optional<double> last_command_wall_s;
 };
 
 // watchdog: the trip came no earlier than the timeout and no later than timeout + one period
 // (+ slack) after the last command, for every round; plus the timeout reported in error_list.
+// "Earlier" is judged on the trip's arrival (it cannot arrive before it happened); "later" on the
+// hub's stamp when it lies between the two, because a receiver that stalls delays only the arrival.
 std::vector<CheckResult> check_watchdog(std::span<const WatchdogRound> rounds, double timeout_s,
                                         double period_s, const std::string& timeout_error,
                                         const Thresholds& thresholds);

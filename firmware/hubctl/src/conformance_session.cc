@@ -84,10 +84,12 @@ std::optional<std::size_t> TargetSession::drive(const PreparedCommand* command, 
     const double now = steady_seconds();
     if (now >= deadline_s || stop_requested()) return std::nullopt;
     if (command != nullptr && now >= next_send) {
+      const double wall = wall_seconds();
       if (commands_->channel.send(*command).is_ok()) {
         if (!wrote) first_send_s_ = now;
         wrote = true;
         last_send_s_ = now;
+        last_send_wall_s_ = wall;
       }
       next_send += repeat_s_;
       if (next_send <= now) next_send = now + repeat_s_;  // fell behind: skip, never burst
@@ -238,11 +240,13 @@ bool TargetSession::run_latency(std::vector<CheckResult>& out) {
     // Always the probe the hub does not echo now, so that it takes effect and is published at once.
     const PreparedCommand& next = other_probe(log().empty() ? nlohmann::ordered_json() : log().back().echo);
     const double sent_at = steady_seconds();
+    const double sent_wall = wall_seconds();
     if (!commands_->channel.send(next).is_ok()) {
       ++lost;
       continue;
     }
     first_send_s_ = last_send_s_ = sent_at;
+    last_send_wall_s_ = sent_wall;
     const auto echoed =
         drive(nullptr, sent_at + echo_wait_s_, [&](const Observation& o) { return echoes(o, next); });
     if (echoed) {
@@ -283,7 +287,7 @@ bool TargetSession::run_watchdog(std::vector<CheckResult>& out) {
 
   // Round 1: the planner goes silent, then comes back with a different command.
   const PreparedCommand* returned_with = nullptr;
-  rounds.push_back(WatchdogRound{last_send_s_, std::nullopt});
+  rounds.push_back(WatchdogRound{last_send_s_, std::nullopt, last_send_wall_s_});
   const auto trip = drive(nullptr, last_send_s_ + trip_wait, not_fresh);
   if (trip) {
     rounds.back().tripped = log()[*trip];
@@ -310,7 +314,7 @@ bool TargetSession::run_watchdog(std::vector<CheckResult>& out) {
     // Long enough for t_plus to grow clearly beyond the tolerance, so a restart is visible.
     drive(&same,
           steady_seconds() + std::max({3 * repeat_s_, 2 * thresholds_.t_plus_tolerance_ms / 1e3, period}));
-    rounds.push_back(WatchdogRound{last_send_s_, std::nullopt});
+    rounds.push_back(WatchdogRound{last_send_s_, std::nullopt, last_send_wall_s_});
     const auto trip2 = drive(nullptr, last_send_s_ + trip_wait, not_fresh);
     if (trip2) {
       rounds.back().tripped = log()[*trip2];

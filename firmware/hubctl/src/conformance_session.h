@@ -104,8 +104,9 @@ class TargetSession {
   double matched_at_s_ = 0;
   double repeat_s_ = 0.1;
   double echo_wait_s_ = 1.0;
-  double first_send_s_ = 0;  // the first write of the last drive() that wrote
-  double last_send_s_ = 0;   // the last write of any drive()
+  double first_send_s_ = 0;      // the first write of the last drive() that wrote
+  double last_send_s_ = 0;       // the last write of any drive()
+  double last_send_wall_s_ = 0;  // the same write on the wall clock (its source timestamp)
 };
 
 }  // namespace hubrt::hubctl

@@ -15,6 +15,10 @@ double steady_seconds() noexcept {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+double wall_seconds() noexcept {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 Observation observe(nlohmann::ordered_json state_json, double arrival_s) {
   Observation o;
   o.arrival_s = arrival_s;

@@ -23,6 +23,9 @@ namespace hubrt::hubctl {
 // The steady clock in seconds, the time base of Observation::arrival_s.
 double steady_seconds() noexcept;
 
+// The wall clock in seconds, the time base of a DDS source timestamp and of a State's stamp.
+double wall_seconds() noexcept;
+
 // Turns a State (as JSON, from SampleDecoder, with the common State fields) into an Observation.
 Observation observe(nlohmann::ordered_json state, double arrival_s);
 

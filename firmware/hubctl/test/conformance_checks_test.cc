@@ -270,25 +270,72 @@ Observation tripped_at(double arrival, bool with_error = true) {
 }
 
 TEST(Watchdog, TripWithinTimeoutPlusPeriodPasses) {
-  const std::vector<WatchdogRound> rounds{{10.0, tripped_at(11.05)}, {20.0, tripped_at(21.10)}};
+  const std::vector<WatchdogRound> rounds{{10.0, tripped_at(11.05), std::nullopt},
+                                          {20.0, tripped_at(21.10), std::nullopt}};
   const auto results = check_watchdog(rounds, 1.0, 0.1, "command timeout", kDefaults);
   EXPECT_EQ(find(results, "watchdog").verdict, Verdict::kPass);
   EXPECT_EQ(find(results, "watchdog_error").verdict, Verdict::kPass);
 }
 
 TEST(Watchdog, LateEarlyMissingOrUnreportedTripsFail) {
-  const std::vector<WatchdogRound> late{{10.0, tripped_at(11.3)}};
+  const std::vector<WatchdogRound> late{{10.0, tripped_at(11.3), std::nullopt}};
   EXPECT_EQ(find(check_watchdog(late, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
             Verdict::kFail);
-  const std::vector<WatchdogRound> early{{10.0, tripped_at(10.5)}};
+  const std::vector<WatchdogRound> early{{10.0, tripped_at(10.5), std::nullopt}};
   EXPECT_EQ(find(check_watchdog(early, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
             Verdict::kFail);
-  const std::vector<WatchdogRound> never{{10.0, std::nullopt}};
+  const std::vector<WatchdogRound> never{{10.0, std::nullopt, std::nullopt}};
   EXPECT_EQ(find(check_watchdog(never, 1.0, 0.1, "command timeout", kDefaults), "watchdog").verdict,
             Verdict::kFail);
-  const std::vector<WatchdogRound> silent{{10.0, tripped_at(11.05, false)}};
+  const std::vector<WatchdogRound> silent{{10.0, tripped_at(11.05, false), std::nullopt}};
   EXPECT_EQ(find(check_watchdog(silent, 1.0, 0.1, "command timeout", kDefaults), "watchdog_error").verdict,
             Verdict::kFail);
+}
+
+// The hub's wall clock as in heartbeat(): 1e9 s ahead of the receiver's steady clock.
+constexpr double kWall = 1e9;
+
+// A trip whose State the hub stamped `stamp` s after the last write, and which arrived `arrival` s
+// after it (the write at 10.0 on the steady clock, kWall + 10.0 on the wall clock).
+WatchdogRound stamped_round(double stamp, double arrival) {
+  Observation o = tripped_at(10.0 + arrival);
+  o.stamp_s = kWall + 10.0 + stamp;
+  return WatchdogRound{10.0, o, kWall + 10.0};
+}
+
+CheckResult watchdog_verdict(const WatchdogRound& round) {
+  return find(check_watchdog(std::span(&round, 1), 1.0, 0.1, "command timeout", kDefaults), "watchdog");
+}
+
+// As CI's t_plus failure of 2026-12-01, at the trip: the hub went safe 1.05 s after the write by
+// its own stamp, and hubctl, stalled, took the State 0.55 s later. On the arrival alone it failed.
+TEST(Watchdog, AReceiverThatStalledDoesNotFailATimelyTrip) {
+  const CheckResult r = watchdog_verdict(stamped_round(1.05, 1.6));
+  EXPECT_EQ(r.verdict, Verdict::kPass) << r.detail;
+  EXPECT_NEAR(*r.number, 1050.0, 1e-3);
+  EXPECT_NE(r.detail.find("1 on the hub's stamps; 1600.000 ms on the arrivals"), std::string::npos)
+      << r.detail;
+  WatchdogRound unstamped = stamped_round(1.05, 1.6);
+  unstamped.last_command_wall_s.reset();  // no wall time: the arrival is all there is
+  EXPECT_EQ(watchdog_verdict(unstamped).verdict, Verdict::kFail);
+}
+
+TEST(Watchdog, ATripLateByItsOwnStampFails) {
+  const CheckResult r = watchdog_verdict(stamped_round(1.4, 1.41));
+  EXPECT_EQ(r.verdict, Verdict::kFail) << r.detail;
+  EXPECT_NEAR(*r.number, 1400.0, 1e-3);
+}
+
+// A stamp before the timeout or after the arrival shows clocks that disagree, not the hub's delay:
+// the arrival judges, and a late one fails however early the stamp claims the trip was.
+TEST(Watchdog, AStampOfAnotherClockIsNotBelieved) {
+  EXPECT_EQ(watchdog_verdict(stamped_round(0.5, 1.6)).verdict, Verdict::kFail);
+  EXPECT_EQ(watchdog_verdict(stamped_round(-3.0, 1.6)).verdict, Verdict::kFail);
+  const CheckResult after = watchdog_verdict(stamped_round(1.2, 1.1));
+  EXPECT_EQ(after.verdict, Verdict::kPass) << after.detail;
+  EXPECT_NEAR(*after.number, 1100.0, 1e-3);
+  // Early by the arrival fails even if the stamp says otherwise.
+  EXPECT_EQ(watchdog_verdict(stamped_round(1.05, 0.5)).verdict, Verdict::kFail);
 }
 
 TEST(SafeState, DeclaredFieldsAreChecked) {
