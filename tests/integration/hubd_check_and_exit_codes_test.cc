@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -14,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include "hubrt/base/exit_codes.h"
+#include "hubrt/dds/domain.h"
+#include "hubrt/dds/ports.h"
 #include "hubrt/test_support/hub_process.h"
 
 namespace hubrt::integration {
@@ -122,6 +125,36 @@ TEST_F(HubdCheckTest, StillRefusesAHubTheBoardCannotCarry) {
       run_program(test_support::hubd_path(), {"--board", "rpi4-rsp-ecu", "--hub", path.string(), "--check"});
   EXPECT_TRUE(f.status.exited_with(exit_codes::kUsage)) << f.status.describe() << "\n" << f.output;
   EXPECT_NE(f.output.find("rsp.no_such_valve"), std::string::npos) << f.output;
+}
+
+// A domain whose ports meet this host's ephemeral port range can be joined from another domain by
+// a planner that does not announce its domain id (hubrt/dds/ports.h): hubd says so at start,
+// unsecured, and names the way out; a domain outside the range gets no such warning.
+TEST_F(HubdCheckTest, WarnsOfADomainWhosePortsMeetTheEphemeralRange) {
+  const dds::PortRange ephemeral = dds::ephemeral_port_range();
+  std::optional<std::uint32_t> inside;
+  std::optional<std::uint32_t> outside;
+  for (std::uint32_t id = 0; id <= dds::kMaxDomainId; ++id) {
+    auto& slot = dds::disjoint(dds::domain_port_band(id), ephemeral) ? outside : inside;
+    if (!slot) slot = id;
+  }
+  const auto check_in = [](std::uint32_t id) {
+    return run_program(test_support::hubd_path(), {"--board", "host-sim", "--hub", "dock_ecu", "--domain",
+                                                   std::to_string(id), "--check"});
+  };
+  if (inside) {
+    const Finished f = check_in(*inside);
+    EXPECT_TRUE(f.status.exited_with(0)) << f.status.describe() << "\n" << f.output;
+    EXPECT_NE(f.output.find(fmt::format("DDS domain {}'s UDP ports", *inside)), std::string::npos)
+        << f.output;
+    EXPECT_NE(f.output.find("docs/deploy.md"), std::string::npos) << f.output;
+  }
+  if (outside) {
+    const Finished f = check_in(*outside);
+    EXPECT_TRUE(f.status.exited_with(0)) << f.status.describe() << "\n" << f.output;
+    EXPECT_EQ(f.output.find("'s UDP ports"), std::string::npos) << f.output;
+  }
+  EXPECT_TRUE(inside || outside);
 }
 
 // And what building the nodes would refuse, checked without building them: a hub-layout node name

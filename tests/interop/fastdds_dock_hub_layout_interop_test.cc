@@ -36,7 +36,7 @@ hub_msgs::msg::DockEcuCommand hub_command(const std::string& hub_name, const std
 class FastDdsDockHubLayoutInteropTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
+    auto domain = test_support::TestDomain::acquire_outside_ephemeral_ports();
     ASSERT_TRUE(domain) << domain.error().message;
     domain_.emplace(std::move(*domain));
     // The shipped hub file, switched to the hub layout.

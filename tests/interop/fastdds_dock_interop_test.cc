@@ -33,7 +33,7 @@ double stamp_seconds(const DockState& state) {
 class FastDdsDockInteropTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
+    auto domain = test_support::TestDomain::acquire_outside_ephemeral_ports();
     ASSERT_TRUE(domain) << domain.error().message;
     domain_.emplace(std::move(*domain));
     auto planner = FastDdsDockPlanner::create(domain_->domain_id(), DockNodeTypes::kCommandTopic,

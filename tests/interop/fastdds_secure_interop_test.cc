@@ -77,7 +77,7 @@ ParticipantProperties fastdds_security_properties(const fs::path& pki, const std
 class FastDdsSecureInteropTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto domain = test_support::TestDomain::acquire();
+    auto domain = test_support::TestDomain::acquire_outside_ephemeral_ports();
     ASSERT_TRUE(domain) << domain.error().message;
     domain_.emplace(std::move(*domain));
     pki_ = fs::temp_directory_path() / fmt::format("hubrt-fastdds-pki-{}", getpid());

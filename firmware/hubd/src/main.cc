@@ -23,6 +23,7 @@
 #include "hubrt/config/hub_config.h"
 #include "hubrt/dds/domain.h"
 #include "hubrt/dds/oversize_samples.h"
+#include "hubrt/dds/ports.h"
 #include "hubrt/dds/security_refusals.h"
 #include "hubrt/hal/board/board_loader.h"
 #include "hubrt/runtime/cycle_runner.h"
@@ -79,9 +80,10 @@ std::string signal_name(int signal) {
 // packages' /var/lib/hubrt/blackbox when it is there to write; else a folder in $TMPDIR (a
 // development machine).
 std::string default_black_box_directory() {
+  // NOLINTNEXTLINE(concurrency-mt-unsafe): nothing in hubd changes its environment.
   if (const char* dir = std::getenv("HUBRT_BLACKBOX_DIR"); dir != nullptr && *dir != '\0') return dir;
   if (::access("/var/lib/hubrt/blackbox", W_OK) == 0) return "/var/lib/hubrt/blackbox";
-  const char* tmp = std::getenv("TMPDIR");
+  const char* tmp = std::getenv("TMPDIR");  // NOLINT(concurrency-mt-unsafe): as above
   return fmt::format("{}/hubrt-blackbox", tmp != nullptr && *tmp != '\0' ? tmp : "/tmp");
 }
 
@@ -188,6 +190,10 @@ int run(const Options& options) {
     // station's other participants can be told what they need.
     spdlog::info("DDS Security as '{}': {}: checked before joining", secured->identity,
                  security::describe_identity(security::credentials_in(secured->dir, secured->identity)));
+  } else if (auto hazard = dds::ephemeral_port_hazard(domain->domain_id, dds::ephemeral_port_range())) {
+    // Unsecured, a planner of this domain can be matched from another (dds/ports.h); secured, a
+    // peer must authenticate and hold permissions for this domain.
+    spdlog::warn("{}", *hazard);
   }
 
   assembly::AssemblyRequest request;

@@ -5,12 +5,31 @@
 
 #include <cerrno>
 #include <filesystem>
+#include <functional>
 #include <system_error>
 #include <utility>
 
 #include <sys/file.h>
 
 namespace hubrt::test_support {
+
+using dds::disjoint;
+using dds::domain_port_band;
+using dds::ephemeral_port_range;
+using dds::PortRange;
+
+namespace {
+
+constexpr std::uint32_t kIdCount = TestDomain::kLastDomainId - TestDomain::kFirstDomainId + 1;
+
+// Which ids a pass of acquire() may take.
+enum class Ports { kInsideEphemeralRange, kOutsideEphemeralRange };
+
+bool ports_match(std::uint32_t domain_id, Ports ports, PortRange ephemeral) {
+  return disjoint(domain_port_band(domain_id), ephemeral) == (ports == Ports::kOutsideEphemeralRange);
+}
+
+}  // namespace
 
 std::string TestDomain::lock_path_for(std::uint32_t domain_id) {
   std::error_code ec;
@@ -40,22 +59,64 @@ Expected<TestDomain> TestDomain::take(std::uint32_t domain_id) {
   return try_lock(domain_id);
 }
 
-Expected<TestDomain> TestDomain::acquire() {
-  constexpr std::uint32_t kCount = kLastDomainId - kFirstDomainId + 1;
-  const auto start = static_cast<std::uint32_t>(getpid()) % kCount;
+namespace {
+
+// The first free id among those `ports` admits, in an order that starts at a point derived from
+// the process id. Returns kBusy when none is free, kIo when a lock file could not be opened.
+Expected<TestDomain> first_free(Ports ports, PortRange ephemeral,
+                                const std::function<Expected<TestDomain>(std::uint32_t)>& try_lock) {
+  const auto start = static_cast<std::uint32_t>(getpid()) % kIdCount;
   std::string last_open_error;
-  for (std::uint32_t i = 0; i < kCount; ++i) {
-    auto domain = try_lock(kFirstDomainId + (start + i) % kCount);
+  for (std::uint32_t i = 0; i < kIdCount; ++i) {
+    const std::uint32_t id = TestDomain::kFirstDomainId + (start + i) % kIdCount;
+    if (!ports_match(id, ports, ephemeral)) continue;
+    auto domain = try_lock(id);
     if (domain) return domain;
     if (domain.error().code == ErrorCode::kIo) last_open_error = domain.error().message;
   }
   if (!last_open_error.empty()) {
     return make_error(ErrorCode::kIo, "no free test DDS domain id; last failure: " + last_open_error);
   }
+  return make_error(ErrorCode::kBusy, "");
+}
+
+}  // namespace
+
+Expected<TestDomain> TestDomain::acquire() {
+  const PortRange ephemeral = ephemeral_port_range();
+  const auto lock = [](std::uint32_t id) { return try_lock(id); };
+  // The ids outside the ephemeral range last: the tests that need them find them free.
+  auto domain = first_free(Ports::kInsideEphemeralRange, ephemeral, lock);
+  if (domain || domain.error().code != ErrorCode::kBusy) return domain;
+  domain = first_free(Ports::kOutsideEphemeralRange, ephemeral, lock);
+  if (domain || domain.error().code != ErrorCode::kBusy) return domain;
   return make_error(ErrorCode::kBusy, "every test DDS domain id from " + std::to_string(kFirstDomainId) +
                                           " to " + std::to_string(kLastDomainId) +
                                           " is locked by another process (" + lock_path_for(kFirstDomainId) +
                                           " ...)");
+}
+
+Expected<TestDomain> TestDomain::acquire_outside_ephemeral_ports() {
+  const PortRange ephemeral = ephemeral_port_range();
+  const std::string range = std::to_string(ephemeral.first) + "-" + std::to_string(ephemeral.last);
+  bool any = false;
+  for (std::uint32_t id = kFirstDomainId; id <= kLastDomainId; ++id) {
+    any = any || ports_match(id, Ports::kOutsideEphemeralRange, ephemeral);
+  }
+  if (!any) {
+    return make_error(ErrorCode::kUnavailable,
+                      "no test DDS domain id from " + std::to_string(kFirstDomainId) + " to " +
+                          std::to_string(kLastDomainId) +
+                          " has its ports (7400 + 250 * id ... + 249) outside this machine's ephemeral "
+                          "port range " +
+                          range + " (net.ipv4.ip_local_port_range); Linux's default is 32768-60999");
+  }
+  auto domain =
+      first_free(Ports::kOutsideEphemeralRange, ephemeral, [](std::uint32_t id) { return try_lock(id); });
+  if (domain || domain.error().code != ErrorCode::kBusy) return domain;
+  return make_error(ErrorCode::kBusy,
+                    "every test DDS domain id whose ports lie outside the ephemeral port range " + range +
+                        " is locked by another process");
 }
 
 Expected<TestDomainRange> TestDomainRange::acquire(std::uint32_t count) {

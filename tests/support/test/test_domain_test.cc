@@ -12,6 +12,10 @@
 namespace hubrt::test_support {
 namespace {
 
+using dds::disjoint;
+using dds::domain_port_band;
+using dds::ephemeral_port_range;
+using dds::PortRange;
 using std::chrono::seconds;
 
 std::string value_of(const Environment& env, const std::string& name) {
@@ -31,6 +35,36 @@ TEST(TestDomain, TwoDomainsInOneProcessGetDifferentIds) {
     EXPECT_GE(d->domain_id(), TestDomain::kFirstDomainId);
     EXPECT_LE(d->domain_id(), TestDomain::kLastDomainId);
   }
+}
+
+// A test with a Fast DDS participant: no socket bound to port 0 can sit on its domain's ports.
+TEST(TestDomain, AcquireOutsideEphemeralPortsGivesAnIdNoEphemeralSocketCanTakeAPortOf) {
+  const PortRange ephemeral = ephemeral_port_range();
+  EXPECT_LE(ephemeral.first, ephemeral.last);
+  std::vector<TestDomain> held;
+  for (int i = 0; i < 3; ++i) {  // 3: ids 100 and 215-230 on Linux's default range
+    auto domain = TestDomain::acquire_outside_ephemeral_ports();
+    ASSERT_TRUE(domain) << domain.error().message;
+    const PortRange band = domain_port_band(domain->domain_id());
+    EXPECT_TRUE(disjoint(band, ephemeral))
+        << "domain " << domain->domain_id() << ": ports " << band.first << "-" << band.last
+        << " meet the ephemeral range " << ephemeral.first << "-" << ephemeral.last;
+    held.push_back(std::move(*domain));
+  }
+}
+
+// The ids outside the ephemeral range are kept for the tests that need them: 114 others come first.
+TEST(TestDomain, AcquireTakesAnIdInsideTheEphemeralRangeWhileOneIsFree) {
+  const PortRange ephemeral = ephemeral_port_range();
+  if (disjoint(PortRange{domain_port_band(TestDomain::kFirstDomainId).first,
+                         domain_port_band(TestDomain::kLastDomainId).last},
+               ephemeral)) {
+    GTEST_SKIP() << "this machine's ephemeral range " << ephemeral.first << "-" << ephemeral.last
+                 << " meets no test domain's ports";
+  }
+  auto domain = TestDomain::acquire();
+  ASSERT_TRUE(domain) << domain.error().message;
+  EXPECT_FALSE(disjoint(domain_port_band(domain->domain_id()), ephemeral)) << domain->domain_id();
 }
 
 TEST(TestDomain, IdIsLockedAgainstOtherProcessesAndFreedOnDestruction) {

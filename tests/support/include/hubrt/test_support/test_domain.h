@@ -9,6 +9,7 @@
 
 #include "hubrt/base/status.h"
 #include "hubrt/dds/domain.h"
+#include "hubrt/dds/ports.h"
 
 namespace hubrt::test_support {
 
@@ -26,8 +27,19 @@ class TestDomain {
   static constexpr std::uint32_t kLastDomainId = 230;
 
   // Takes the first free id, starting at a point derived from the process id so that parallel
-  // tests rarely contend. Errors: kBusy if every id is taken; kIo if no lock file can be opened.
+  // tests rarely contend, and the ids of acquire_outside_ephemeral_ports() only when no other is
+  // free. Errors: kBusy if every id is taken; kIo if no lock file can be opened.
   static Expected<TestDomain> acquire();
+  // An id none of whose ports (dds::domain_port_band) the kernel can give a socket bound to port 0
+  // (dds::ephemeral_port_range): 100 and 215-230 on Linux's default range. A test whose participants
+  // do not announce their domain id needs one. Fast DDS 2.9 sends no PID_DOMAIN_ID in its
+  // participant announcements, and Cyclone 0.10 takes an announcement without one as of its own
+  // domain. Cyclone also reads its transmit socket, bound to port 0. A Fast DDS planner's
+  // announcements to its domain's discovery ports would reach a Cyclone hub of another test whose
+  // transmit socket sits on one of them: the two match across domains. CI saw a Fast DDS planner
+  // receive another test's Dock ECU States (docs/ci.md). Errors: kUnavailable when the ephemeral
+  // range covers every id's ports; kBusy when every such id is taken; kIo as acquire().
+  static Expected<TestDomain> acquire_outside_ephemeral_ports();
   // Takes `domain_id` itself, any id up to dds::kMaxDomainId, without waiting: a benchmark that
   // probes a domain other programs already run in (bench/plant.py). Errors: kInvalidArgument above
   // dds::kMaxDomainId; kBusy when another process holds it; kIo when its lock file cannot be opened.
