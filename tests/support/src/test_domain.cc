@@ -5,7 +5,6 @@
 
 #include <cerrno>
 #include <filesystem>
-#include <functional>
 #include <system_error>
 #include <utility>
 
@@ -63,8 +62,9 @@ namespace {
 
 // The first free id among those `ports` admits, in an order that starts at a point derived from
 // the process id. Returns kBusy when none is free, kIo when a lock file could not be opened.
+// `try_lock` is TestDomain::try_lock, private, handed in by its members.
 Expected<TestDomain> first_free(Ports ports, PortRange ephemeral,
-                                const std::function<Expected<TestDomain>(std::uint32_t)>& try_lock) {
+                                Expected<TestDomain> (*try_lock)(std::uint32_t)) {
   const auto start = static_cast<std::uint32_t>(getpid()) % kIdCount;
   std::string last_open_error;
   for (std::uint32_t i = 0; i < kIdCount; ++i) {
@@ -84,11 +84,10 @@ Expected<TestDomain> first_free(Ports ports, PortRange ephemeral,
 
 Expected<TestDomain> TestDomain::acquire() {
   const PortRange ephemeral = ephemeral_port_range();
-  const auto lock = [](std::uint32_t id) { return try_lock(id); };
   // The ids outside the ephemeral range last: the tests that need them find them free.
-  auto domain = first_free(Ports::kInsideEphemeralRange, ephemeral, lock);
+  auto domain = first_free(Ports::kInsideEphemeralRange, ephemeral, &try_lock);
   if (domain || domain.error().code != ErrorCode::kBusy) return domain;
-  domain = first_free(Ports::kOutsideEphemeralRange, ephemeral, lock);
+  domain = first_free(Ports::kOutsideEphemeralRange, ephemeral, &try_lock);
   if (domain || domain.error().code != ErrorCode::kBusy) return domain;
   return make_error(ErrorCode::kBusy, "every test DDS domain id from " + std::to_string(kFirstDomainId) +
                                           " to " + std::to_string(kLastDomainId) +
@@ -111,8 +110,7 @@ Expected<TestDomain> TestDomain::acquire_outside_ephemeral_ports() {
                           "port range " +
                           range + " (net.ipv4.ip_local_port_range); Linux's default is 32768-60999");
   }
-  auto domain =
-      first_free(Ports::kOutsideEphemeralRange, ephemeral, [](std::uint32_t id) { return try_lock(id); });
+  auto domain = first_free(Ports::kOutsideEphemeralRange, ephemeral, &try_lock);
   if (domain || domain.error().code != ErrorCode::kBusy) return domain;
   return make_error(ErrorCode::kBusy,
                     "every test DDS domain id whose ports lie outside the ephemeral port range " + range +
