@@ -13,6 +13,8 @@ namespace {
 // The DDSI default port mapping (Cyclone's Discovery/Ports defaults, Fast DDS's PortParameters).
 constexpr int kPortBase = 7400;
 constexpr int kDomainGain = 250;
+constexpr int kUnicastDiscoveryOffset = 10;
+constexpr int kParticipantGain = 2;
 constexpr int kHighestPort = 65535;
 
 // A decimal port number at the start of `text`, the rest of `text` after it.
@@ -32,6 +34,10 @@ std::optional<int> take_port(std::string_view& text) {
 PortRange domain_port_band(std::uint32_t domain_id) {
   const int first = kPortBase + kDomainGain * static_cast<int>(domain_id);
   return PortRange{first, first + kDomainGain - 1};
+}
+
+int unicast_discovery_port(std::uint32_t domain_id, int index) {
+  return domain_port_band(domain_id).first + kUnicastDiscoveryOffset + kParticipantGain * index;
 }
 
 bool disjoint(PortRange a, PortRange b) {

@@ -15,6 +15,12 @@ TEST(DomainPortBand, IsTheDdsiMappingOfTheIdUpToTheNextDomain) {
   EXPECT_EQ(domain_port_band(215).first, 61150);
 }
 
+TEST(UnicastDiscoveryPort, IsTenPastTheBandAndTwoPerParticipantIndex) {
+  EXPECT_EQ(unicast_discovery_port(0, 0), 7410);
+  EXPECT_EQ(unicast_discovery_port(3, 4), 8168);
+  EXPECT_EQ(unicast_discovery_port(215, 1), 61162);
+}
+
 TEST(DomainPortBand, OnLinuxDefaultsIdsUpTo100And215OnAreOutsideTheEphemeralRange) {
   EXPECT_TRUE(disjoint(domain_port_band(100), kLinuxDefaultEphemeralPorts));   // 32400-32649
   EXPECT_FALSE(disjoint(domain_port_band(101), kLinuxDefaultEphemeralPorts));  // 32650-32899

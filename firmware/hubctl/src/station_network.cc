@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "hubrt/config/yaml_map.h"
+#include "hubrt/dds/ports.h"
 
 namespace hubrt::hubctl {
 namespace {
@@ -121,7 +122,7 @@ int StationNetwork::max_participant_index() const {
 }
 
 int StationNetwork::first_unicast_port() const {
-  return 7400 + 250 * static_cast<int>(domain_id) + 10;
+  return dds::unicast_discovery_port(domain_id, 0);
 }
 
 int StationNetwork::last_unicast_port() const {

@@ -15,6 +15,7 @@
 #include <sys/socket.h>
 
 #include "hubrt/dds/participant.h"
+#include "hubrt/dds/ports.h"
 #include "hubrt/dds/read_condition.h"
 #include "hubrt/dds/reader.h"
 #include "hubrt/dds/topic.h"
@@ -41,7 +42,7 @@ constexpr int kHubs = 64;
 // port of a participant index. Cyclone takes the first index whose ports it can bind
 // (q_init.c, make_uc_sockets: EADDRINUSE means "in use, try the next").
 std::uint16_t unicast_discovery_port(std::uint32_t domain_id, int index) {
-  return static_cast<std::uint16_t>(7400 + 250 * domain_id + 10 + 2 * index);
+  return static_cast<std::uint16_t>(dds::unicast_discovery_port(domain_id, index));
 }
 
 // UDP sockets bound to the discovery ports of participant indices 0..count-1: to Cyclone, as

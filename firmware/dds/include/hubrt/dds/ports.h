@@ -23,6 +23,10 @@ inline constexpr PortRange kLinuxDefaultEphemeralPorts{32768, 60999};
 // Cyclone and Fast DDS share (7400 + 250 * id, up to the next domain's first port).
 PortRange domain_port_band(std::uint32_t domain_id);
 
+// The unicast discovery port of participant index `index` of `domain_id` under the same mapping
+// (offset 10, participant gain 2); its unicast data port is the next one.
+int unicast_discovery_port(std::uint32_t domain_id, int index);
+
 // Whether the two ranges share no port.
 bool disjoint(PortRange a, PortRange b);
 
